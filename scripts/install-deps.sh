@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs every build and run dependency from Debian 12's archive. Idempotent; needs root
+# (or sudo). Skips apt entirely when everything is already present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libmujoco-dev libeigen3-dev libnlopt-cxx-dev libnlopt-dev libyaml-cpp-dev nlohmann-json3-dev
+  libcli11-dev libfmt-dev libspdlog-dev libpng-dev
+  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  python3 python3-numpy python3-sklearn python3-matplotlib
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

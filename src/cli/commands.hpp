@@ -1,0 +1,12 @@
+#pragma once
+/// Registration of the `minigolf` subcommands; one function per command group, one file each.
+#include <CLI/CLI.hpp>
+
+namespace mg::cli {
+
+void add_field_commands(CLI::App& app);     // field list | field show
+void add_putt_command(CLI::App& app);       // putt
+void add_learning_commands(CLI::App& app);  // train | predict | validate
+void add_ds_commands(CLI::App& app);        // ds fit | ds check | ds rollout
+
+}  // namespace mg::cli

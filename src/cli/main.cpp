@@ -1,0 +1,35 @@
+// The `minigolf` command: parses, loads, calls the library, prints, maps errors to exit codes.
+//
+// Exit codes: 0 success; 2 bad input (unknown name, malformed file, bad number); 1 any other
+// failure; CLI11's own codes (>= 100) for malformed command lines.
+#include <cstdio>
+#include <exception>
+
+#include <fmt/format.h>
+
+#include "cli/commands.hpp"
+#include "core/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"minigolf: a simulated Barrett WAM that learns to putt"};
+  app.require_subcommand(1);
+  mg::cli::add_field_commands(app);
+  mg::cli::add_putt_command(app);
+  mg::cli::add_learning_commands(app);
+  mg::cli::add_ds_commands(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const mg::InputError& e) {
+    fmt::print(stderr, "minigolf: error: {}\n", e.what());
+    return 2;
+  } catch (const mg::IoError& e) {
+    fmt::print(stderr, "minigolf: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "minigolf: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}
