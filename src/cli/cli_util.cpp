@@ -1,0 +1,51 @@
+#include "cli/cli_util.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
+namespace mg::cli {
+
+template <std::size_t N>
+std::array<double, N> parse_vector(const std::string& what, const std::string& text) {
+  std::array<double, N> out{};
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    const std::size_t comma = text.find(',', start);
+    const bool last = i + 1 == N;
+    if (last != (comma == std::string::npos))
+      throw InputError(fmt::format("{}: expected {} comma-separated numbers, got '{}'", what, N, text));
+    const std::string cell = text.substr(start, last ? std::string::npos : comma - start);
+    const char* first = cell.data();
+    if (!cell.empty() && cell.front() == '+') ++first;
+    auto [ptr, ec] = std::from_chars(first, cell.data() + cell.size(), out[i]);
+    if (cell.empty() || ec != std::errc() || ptr != cell.data() + cell.size())
+      throw InputError(fmt::format("{}: expected a number, got '{}'", what, cell));
+    if (!std::isfinite(out[i]))
+      throw InputError(fmt::format("{}: expected a finite number, got '{}'", what, cell));
+    start = comma + 1;
+  }
+  return out;
+}
+
+template std::array<double, 2> parse_vector<2>(const std::string&, const std::string&);
+template std::array<double, 3> parse_vector<3>(const std::string&, const std::string&);
+
+std::vector<std::string> parse_names(const std::string& what, const std::string& text) {
+  std::vector<std::string> names;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    std::string name = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (name.empty()) throw InputError(fmt::format("{}: empty name in '{}'", what, text));
+    names.push_back(std::move(name));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return names;
+}
+
+}  // namespace mg::cli

@@ -1,0 +1,300 @@
+#include "field/field.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include "core/check.hpp"
+#include "core/error.hpp"
+#include "core/io.hpp"
+
+namespace mg::field {
+namespace {
+
+constexpr int kFormatVersion = 1;
+
+/// Reads typed values from a YAML map, naming `source` and the key path in every error, and
+/// rejecting keys it was not asked about (typos must not silently fall back to defaults).
+class MapReader {
+ public:
+  MapReader(const YAML::Node& node, std::string source, std::string path)
+      : node_(node), source_(std::move(source)), path_(std::move(path)) {
+    if (!node_.IsMap()) fail(path_.empty() ? "the file" : path_, "expected a mapping");
+  }
+
+  bool has(const std::string& key) {
+    seen_.insert(key);
+    return static_cast<bool>(node_[key]);
+  }
+  YAML::Node require(const std::string& key) {
+    if (!has(key)) fail(full(key), "missing (required)");
+    return node_[key];
+  }
+  double number(const std::string& key) { return to_number(require(key), full(key)); }
+  double number(const std::string& key, double fallback) {
+    return has(key) ? to_number(node_[key], full(key)) : fallback;
+  }
+  std::string text(const std::string& key, const std::string& fallback) {
+    if (!has(key)) return fallback;
+    const YAML::Node n = node_[key];
+    if (!n.IsScalar()) fail(full(key), "expected text");
+    return n.as<std::string>();
+  }
+  template <std::size_t N>
+  std::array<double, N> numbers(const std::string& key) {
+    return to_numbers<N>(require(key), full(key));
+  }
+  template <std::size_t N>
+  std::array<double, N> numbers(const std::string& key, std::array<double, N> fallback) {
+    return has(key) ? to_numbers<N>(node_[key], full(key)) : fallback;
+  }
+  MapReader child(const std::string& key) { return MapReader(require(key), source_, full(key)); }
+  bool has_child(const std::string& key) { return has(key); }
+
+  /// Throws on any key not read so far.
+  void finish() const {
+    for (const auto& kv : node_) {
+      const auto key = kv.first.as<std::string>();
+      if (!seen_.count(key)) fail(full(key), "unknown key");
+    }
+  }
+
+  std::string full(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  [[noreturn]] void fail(const std::string& what, const std::string& why) const {
+    throw InputError(fmt::format("{}: {}: {}", source_, what, why));
+  }
+  const std::string& source() const { return source_; }
+
+  double to_number(const YAML::Node& n, const std::string& what) const {
+    if (!n.IsScalar()) fail(what, "expected a number");
+    const std::string s = n.as<std::string>();
+    double v = 0.0;
+    std::size_t used = 0;
+    try {
+      v = std::stod(s, &used);
+    } catch (const std::exception&) {
+      fail(what, fmt::format("expected a number, got '{}'", s));
+    }
+    if (used != s.size()) fail(what, fmt::format("expected a number, got '{}'", s));
+    if (!std::isfinite(v)) fail(what, fmt::format("expected a finite number, got '{}'", s));
+    return v;
+  }
+  template <std::size_t N>
+  std::array<double, N> to_numbers(const YAML::Node& n, const std::string& what) const {
+    if (!n.IsSequence() || n.size() != N) fail(what, fmt::format("expected a list of {} numbers", N));
+    std::array<double, N> out{};
+    for (std::size_t i = 0; i < N; ++i) out[i] = to_number(n[i], fmt::format("{}[{}]", what, i));
+    return out;
+  }
+
+ private:
+  YAML::Node node_;
+  std::string source_;
+  std::string path_;
+  std::set<std::string> seen_;
+};
+
+SurfaceTerm parse_term(MapReader r, const Field& field, const std::filesystem::path& base_dir) {
+  const std::string type = r.text("type", "");
+  SurfaceTerm term;
+  if (type == "plane") {
+    PlaneTerm t;
+    t.offset = r.number("offset", 0.0);
+    t.slope_x = r.number("slope_x", 0.0);
+    t.slope_y = r.number("slope_y", 0.0);
+    term = t;
+  } else if (type == "bump") {
+    BumpTerm t;
+    t.center = r.numbers<2>("center");
+    t.height = r.number("height");
+    t.sigma = r.numbers<2>("sigma");
+    if (!(t.sigma[0] > 0 && t.sigma[1] > 0)) r.fail(r.full("sigma"), "expected positive widths");
+    term = t;
+  } else if (type == "hill") {
+    HillTerm t;
+    t.crest = r.numbers<2>("crest");
+    t.direction = r.numbers<2>("direction", {1.0, 0.0});
+    const double n = std::hypot(t.direction[0], t.direction[1]);
+    if (!(n > 0)) r.fail(r.full("direction"), "expected a non-zero vector");
+    t.direction = {t.direction[0] / n, t.direction[1] / n};
+    t.height = r.number("height");
+    t.half_width = r.number("half_width");
+    if (!(t.half_width > 0)) r.fail(r.full("half_width"), "expected a positive number");
+    term = t;
+  } else if (type == "arctan") {
+    ArctanTerm t;
+    t.center = r.numbers<2>("center", {0.0, 0.0});
+    t.amplitude = r.number("amplitude");
+    t.scale_x = r.number("scale_x");
+    t.scale_y = r.number("scale_y", 0.0);
+    term = t;
+  } else if (type == "heightmap") {
+    std::filesystem::path file = r.text("file", "");
+    if (file.empty()) r.fail(r.full("file"), "missing (required)");
+    if (file.is_relative()) file = base_dir / file;
+    const double z_min = r.number("z_min", 0.0);
+    const double z_max = r.number("z_max", 0.0);
+    const auto bounds = r.numbers<4>("bounds", field.bounds);
+    try {
+      term = load_heightmap(file.string(), bounds, z_min, z_max);
+    } catch (const Error& e) {
+      throw InputError(fmt::format("{}: {}: {}", r.source(), r.full("file"), e.what()));
+    }
+  } else {
+    r.fail(r.full("type"), fmt::format("unknown surface type '{}' (expected plane, bump, hill, "
+                                       "arctan or heightmap)", type));
+  }
+  r.finish();
+  return term;
+}
+
+}  // namespace
+
+void Field::validate() const {
+  const auto where = [&](std::string_view what) { return fmt::format("{}: {}", source, what); };
+  for (double b : bounds) require_finite(where("lane.bounds"), b);
+  if (!(bounds[1] - bounds[0] >= 0.5 && bounds[3] - bounds[2] >= 0.2))
+    throw InputError(fmt::format("{}: expected a lane of at least 0.5 x 0.2 m, got {} x {} m",
+                                 where("lane.bounds"), bounds[1] - bounds[0], bounds[3] - bounds[2]));
+  if (bounds[1] - bounds[0] > 50 || bounds[3] - bounds[2] > 50)
+    throw InputError(fmt::format("{}: expected a lane of at most 50 x 50 m", where("lane.bounds")));
+  require_in_range(where("lane.cell_size"), cell_size, 0.005, 0.25);
+  const double cells = (bounds[1] - bounds[0]) / cell_size * (bounds[3] - bounds[2]) / cell_size;
+  if (cells > 4e6)
+    throw InputError(fmt::format("{}: expected at most 4e6 heightfield cells, got {:.0f}",
+                                 where("lane.cell_size"), cells));
+  require_in_range(where("ball.radius"), ball.radius, 0.005, 0.1);
+  require_in_range(where("ball.mass"), ball.mass, 0.001, 1.0);
+  require_in_range(where("hole.diameter"), hole.diameter, 2.0 * ball.radius + 1e-3, 1.0);
+  require_in_range(where("hole.depth"), hole.depth, 0.002, 0.5);
+  require_in_range(where("rolling_resistance"), rolling_resistance, 0.0, 1.0);
+  require_in_range(where("sliding_friction"), sliding_friction, 0.01, 2.0);
+  require_in_range(where("borders.height"), borders.height, 2.0 * ball.radius, 1.0);
+  require_in_range(where("borders.thickness"), borders.thickness, 0.005, 0.5);
+  require_in_range(where("borders.restitution"), borders.restitution, 0.0, 0.95);
+  const double margin = ball.radius;
+  if (tee[0] < bounds[0] + margin || tee[0] > bounds[1] - margin || tee[1] < bounds[2] + margin ||
+      tee[1] > bounds[3] - margin)
+    throw InputError(fmt::format("{}: expected a point inside the lane, got ({}, {})", where("tee"),
+                                 tee[0], tee[1]));
+  check_hole_position(*this, hole.position);
+  // The surface must be finite and not absurdly steep anywhere on the lane.
+  const int n = 64;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double x = bounds[0] + (bounds[1] - bounds[0]) * i / n;
+      const double y = bounds[2] + (bounds[3] - bounds[2]) * j / n;
+      const double z = height(x, y);
+      if (!std::isfinite(z) || std::abs(z) > 10.0)
+        throw InputError(fmt::format("{}: height {} at ({:.3f}, {:.3f}) is not a finite value "
+                                     "within +-10 m", where("surface"), z, x, y));
+      const auto g = surface.gradient(x, y);
+      if (std::hypot(g[0], g[1]) > 1.0)
+        throw InputError(fmt::format("{}: slope {:.2f} at ({:.3f}, {:.3f}) is steeper than 45 "
+                                     "degrees", where("surface"), std::hypot(g[0], g[1]), x, y));
+    }
+}
+
+void check_hole_position(const Field& field, std::array<double, 2> p) {
+  const double r = 0.5 * field.hole.diameter;
+  const auto& b = field.bounds;
+  if (!std::isfinite(p[0]) || !std::isfinite(p[1]))
+    throw InputError(fmt::format("hole position: expected finite numbers, got ({}, {})", p[0], p[1]));
+  if (p[0] - r < b[0] || p[0] + r > b[1] || p[1] - r < b[2] || p[1] + r > b[3])
+    throw InputError(fmt::format(
+        "hole position: ({}, {}) puts the hole outside the lane of field '{}' "
+        "(x in [{}, {}], y in [{}, {}], hole radius {})",
+        p[0], p[1], field.name, b[0], b[1], b[2], b[3], r));
+}
+
+Field parse_field(std::string_view yaml_text, const std::string& source,
+                  const std::filesystem::path& base_dir) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml_text));
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}: malformed YAML: {}", source, e.what()));
+  }
+  if (!root || root.IsNull()) throw InputError(fmt::format("{}: empty field file", source));
+  Field f;
+  f.source = source;
+  try {
+    MapReader r(root, source, "");
+    const double version = r.number("format_version");
+    if (version != kFormatVersion)
+      r.fail("format_version", fmt::format("expected {}, got {}", kFormatVersion, version));
+    f.name = r.text("name", std::filesystem::path(source).stem().string());
+    f.description = r.text("description", "");
+    {
+      MapReader lane = r.child("lane");
+      f.bounds = lane.numbers<4>("bounds");
+      f.cell_size = lane.number("cell_size", f.cell_size);
+      lane.finish();
+    }
+    f.tee = r.numbers<2>("tee");
+    {
+      MapReader hole = r.child("hole");
+      f.hole.position = hole.numbers<2>("position");
+      f.hole.diameter = hole.number("diameter", f.hole.diameter);
+      f.hole.depth = hole.number("depth", f.hole.depth);
+      hole.finish();
+    }
+    if (r.has_child("ball")) {
+      MapReader ball = r.child("ball");
+      f.ball.radius = ball.number("radius", f.ball.radius);
+      f.ball.mass = ball.number("mass", f.ball.mass);
+      ball.finish();
+    }
+    f.rolling_resistance = r.number("rolling_resistance");
+    f.sliding_friction = r.number("sliding_friction", f.sliding_friction);
+    if (r.has_child("borders")) {
+      MapReader borders = r.child("borders");
+      f.borders.height = borders.number("height", f.borders.height);
+      f.borders.thickness = borders.number("thickness", f.borders.thickness);
+      f.borders.restitution = borders.number("restitution", f.borders.restitution);
+      borders.finish();
+    }
+    const YAML::Node surface = r.require("surface");
+    if (!surface.IsSequence() || surface.size() == 0)
+      r.fail("surface", "expected a non-empty list of terms");
+    for (std::size_t i = 0; i < surface.size(); ++i)
+      f.surface.terms.push_back(
+          parse_term(MapReader(surface[i], source, fmt::format("surface[{}]", i)), f, base_dir));
+    r.finish();
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}: malformed field: {}", source, e.what()));
+  }
+  f.validate();
+  return f;
+}
+
+Field load_field(std::string_view name_or_path) {
+  const std::string arg(name_or_path);
+  if (arg.empty()) throw InputError("field: expected a name or a path, got ''");
+  const bool is_path = arg.find('/') != std::string::npos || arg.ends_with(".yaml") ||
+                       arg.ends_with(".yml");
+  std::filesystem::path path;
+  if (is_path) {
+    path = arg;
+  } else {
+    path = data_dir() / "fields" / (arg + ".yaml");
+    if (!std::filesystem::exists(path))
+      throw InputError(fmt::format("field: unknown field '{}' (shipped: {}; give a path for your "
+                                   "own file)", arg, fmt::join(list_shipped_fields(), ", ")));
+  }
+  return parse_field(read_text_file(path), path.string(), path.parent_path());
+}
+
+std::vector<std::string> list_shipped_fields() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(data_dir() / "fields", ec))
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace mg::field

@@ -1,0 +1,71 @@
+#pragma once
+/// A minigolf lane as data: bounds, surface, tee, hole, ball, resistances, borders.
+///
+/// Fields are YAML files (format in README "Field files"). A field named without a path
+/// (`flat`) is the shipped one in `data/fields/`; anything with a '/' or a `.yaml`/`.yml`
+/// suffix is a user's file. A `Field` is validated once, on load.
+#include <array>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "field/surface.hpp"
+
+namespace mg::field {
+
+/// The hole: a cylindrical cup cut into the surface.
+struct Hole {
+  std::array<double, 2> position{2.0, 0.0};  ///< centre, world frame [m]
+  double diameter = 0.108;                   ///< [m] (golf: 108 mm)
+  double depth = 0.06;                       ///< [m] below the surface at the centre
+};
+
+/// The ball (default: a golf ball, 42.67 mm, 45.93 g).
+struct Ball {
+  double radius = 0.021335;  ///< [m]
+  double mass = 0.04593;     ///< [kg]
+};
+
+/// The lane's borders (walls) around `bounds`.
+struct Borders {
+  double height = 0.06;       ///< [m] above the highest point of the surface next to them
+  double thickness = 0.04;    ///< [m]
+  double restitution = 0.6;   ///< [-] normal speed after / before a head-on bounce
+};
+
+struct Field {
+  std::string name;
+  std::string description;
+  std::string source;                           ///< file the field was read from
+  std::array<double, 4> bounds{-0.3, 2.7, -0.6, 0.6};  ///< lane [x_min, x_max, y_min, y_max] [m]
+  double cell_size = 0.025;                     ///< heightfield grid spacing [m]
+  std::array<double, 2> tee{0.0, 0.0};          ///< ball start [m]
+  Hole hole;
+  Ball ball;
+  double rolling_resistance = 0.131;            ///< Penner's rho [-]: rolling decel (5/7) rho g
+  double sliding_friction = 0.3;                ///< ball-lane Coulomb friction while sliding [-]
+  Borders borders;
+  Surface surface;
+
+  /// Throws `InputError` naming the first bad value.
+  void validate() const;
+  /// Height of the lane at (x, y) [m].
+  double height(double x, double y) const { return surface.height(x, y); }
+};
+
+/// Loads a field by shipped name or by path (see file comment). Throws `InputError`/`IoError`.
+Field load_field(std::string_view name_or_path);
+
+/// Parses field YAML text. `base_dir` resolves relative heightmap paths; `source` names the
+/// text in error messages.
+Field parse_field(std::string_view yaml_text, const std::string& source,
+                  const std::filesystem::path& base_dir);
+
+/// Names of the shipped fields, sorted.
+std::vector<std::string> list_shipped_fields();
+
+/// Throws `InputError` unless a hole centred at `position` lies wholly inside the lane.
+void check_hole_position(const Field& field, std::array<double, 2> position);
+
+}  // namespace mg::field

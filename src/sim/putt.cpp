@@ -1,0 +1,128 @@
+#include "sim/putt.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.hpp"
+
+namespace mg::sim {
+
+void PuttRequest::validate() const {
+  require_in_range("angle", angle, -3.15, 3.15);
+  require_in_range("speed", speed, 1e-3, 15.0);
+  require_in_range("max_duration", max_duration, 0.01, 600.0);
+  require_in_range("record_interval", record_interval, 0.0, 10.0);
+}
+
+std::string to_string(PuttEnd end) {
+  switch (end) {
+    case PuttEnd::kSunk: return "sunk";
+    case PuttEnd::kAtRest: return "at_rest";
+    case PuttEnd::kTimeOut: return "time_out";
+    case PuttEnd::kLeftLane: return "left_lane";
+  }
+  return "unknown";
+}
+
+OutcomeTracker::OutcomeTracker(const World& world, const mjData* d, const OutcomeRules& rules)
+    : world_(&world), rules_(rules) {
+  hole_ = world.hole_position(d);
+  hole_radius_ = 0.5 * world.field().hole.diameter;
+  rim_z_ = world.field().height(hole_[0], hole_[1]);
+  const auto& b = world.field().bounds;
+  lowest_z_ = 1e9;
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 20; ++j)
+      lowest_z_ = std::min(lowest_z_, world.field().height(b[0] + (b[1] - b[0]) * i / 20,
+                                                           b[2] + (b[3] - b[2]) * j / 20));
+  outcome_.closest_approach = 1e9;
+  update(d);
+}
+
+bool OutcomeTracker::update(const mjData* d) {
+  const auto& ids = world_->ids();
+  const mjtNum* q = d->qpos + ids.ball_qpos;
+  const mjtNum* v = d->qvel + ids.ball_dof;
+  const double r = world_->field().ball.radius;
+  const double dist = std::hypot(q[0] - hole_[0], q[1] - hole_[1]);
+  outcome_.closest_approach = std::min(outcome_.closest_approach, dist);
+  outcome_.duration = d->time;
+  outcome_.rest_position = {q[0], q[1]};
+  const bool over_hole = dist < hole_radius_;
+
+  // Dropped into a deep cup: the ball's centre is well below the rim, it cannot climb out.
+  if (over_hole && q[2] < rim_z_ - 0.5 * r) {
+    outcome_.sunk = true;
+    outcome_.end = PuttEnd::kSunk;
+    return true;
+  }
+  const auto& b = world_->field().bounds;
+  if (!std::isfinite(q[0] + q[1] + q[2]) || q[2] < lowest_z_ - 0.3 || q[0] < b[0] - 0.2 ||
+      q[0] > b[1] + 0.2 || q[1] < b[2] - 0.2 || q[1] > b[3] + 0.2) {
+    outcome_.end = PuttEnd::kLeftLane;
+    return true;
+  }
+  const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (speed < rules_.rest_speed) {
+    if (still_since_ < 0.0) still_since_ = d->time;
+    if (d->time - still_since_ >= rules_.rest_time) {
+      // At rest inside a (shallow) cup counts as holed.
+      outcome_.sunk = over_hole;
+      outcome_.end = over_hole ? PuttEnd::kSunk : PuttEnd::kAtRest;
+      return true;
+    }
+  } else {
+    still_since_ = -1.0;
+  }
+  return false;
+}
+
+PuttOutcome simulate_putt(const World& world, mjData* d, std::array<double, 2> hole,
+                          const PuttRequest& request, const OutcomeRules& rules) {
+  request.validate();
+  const mjModel* m = world.model();
+  world.reset(d);
+  world.set_hole(d, hole);
+  const auto& f = world.field();
+  world.place_ball(d, f.tee);
+
+  // Launch along the surface tangent in the requested horizontal direction, without spin.
+  const double cx = std::cos(request.angle), cy = std::sin(request.angle);
+  const auto g = f.surface.gradient(f.tee[0], f.tee[1]);
+  const double cz = g[0] * cx + g[1] * cy;
+  const double scale = request.speed / std::sqrt(1.0 + cz * cz);
+  mjtNum* v = d->qvel + world.ids().ball_dof;
+  v[0] = cx * scale;
+  v[1] = cy * scale;
+  v[2] = cz * scale;
+  mj_forward(m, d);
+
+  OutcomeTracker tracker(world, d, rules);
+  std::vector<BallSample> trajectory;
+  const int record_every =
+      request.record_interval > 0.0
+          ? std::max(1, static_cast<int>(std::lround(request.record_interval / m->opt.timestep)))
+          : 0;
+  const auto record = [&] {
+    const mjtNum* q = d->qpos + world.ids().ball_qpos;
+    const mjtNum* w = d->qvel + world.ids().ball_dof;
+    trajectory.push_back({d->time, q[0], q[1], q[2], w[0], w[1], w[2]});
+  };
+  if (record_every) record();
+  const int max_steps = static_cast<int>(std::ceil(request.max_duration / m->opt.timestep));
+  int steps = 0;
+  bool decided = false;
+  while (steps < max_steps && !decided) {
+    world.step(d);
+    ++steps;
+    decided = tracker.update(d);
+    if (record_every && (steps % record_every == 0 || decided)) record();
+  }
+  PuttOutcome out = tracker.outcome();
+  out.steps = steps;
+  if (!decided) out.end = PuttEnd::kTimeOut;
+  out.trajectory = std::move(trajectory);
+  return out;
+}
+
+}  // namespace mg::sim

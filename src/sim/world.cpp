@@ -1,0 +1,366 @@
+#include "sim/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "core/check.hpp"
+#include "core/error.hpp"
+
+namespace mg::sim {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kGravity = 9.81;
+
+// mjData::userdata layout: the contact filter reads the hole from here, so the filter is a pure
+// function of (model, data) and safe with one mjData per thread.
+constexpr int kUserMagic = 0, kUserBallGeom = 1, kUserGroundGeom = 2, kUserHoleX = 3,
+              kUserHoleY = 4, kUserHoleRadius = 5, kUserGroundNormal = 6, kUserSize = 7;
+constexpr double kMagic = 7.2426e6;  // marks an mjData that belongs to a minigolf World
+
+// Collision groups: static geoms only have a contype, so they never collide with each other
+// (mocap cup segments would otherwise collide with each other and the ground); the ball has
+// every static group in its conaffinity. Bit 4 is left for the arm's club head.
+constexpr int kLaneGroup = 1, kCupGroup = 2, kNoAffinity = 0;
+
+// Removes ball-ground contacts while the ball's centre is over the hole opening: the cup below
+// then catches the ball. Otherwise MuJoCo's default contype/conaffinity rule, which a user filter
+// replaces, is applied unchanged.
+int hole_contact_filter(const mjModel* m, mjData* d, int g1, int g2) {
+  const bool bitmask_ok = (m->geom_contype[g1] & m->geom_conaffinity[g2]) ||
+                          (m->geom_contype[g2] & m->geom_conaffinity[g1]);
+  if (!bitmask_ok) return 1;
+  if (m->nuserdata < kUserSize || d->userdata[kUserMagic] != kMagic) return 0;
+  const int ball = static_cast<int>(d->userdata[kUserBallGeom]);
+  const int ground = static_cast<int>(d->userdata[kUserGroundGeom]);
+  if (!((g1 == ball && g2 == ground) || (g1 == ground && g2 == ball))) return 0;
+  const mjtNum* p = d->geom_xpos + 3 * ball;
+  const double dx = p[0] - d->userdata[kUserHoleX], dy = p[1] - d->userdata[kUserHoleY];
+  const double radius = d->userdata[kUserHoleRadius];
+  return dx * dx + dy * dy < radius * radius ? 1 : 0;
+}
+
+// Damping ratio of a spring-damper contact whose bounce has restitution e.
+double damping_ratio_for_restitution(double e) {
+  if (e <= 0.0) return 1.0;
+  const double l = std::log(e);
+  return -l / std::sqrt(kPi * kPi + l * l);
+}
+
+}  // namespace
+
+void WorldOptions::validate() const {
+  require_in_range("world.timestep", timestep, 1e-4, 0.002);
+  if (hole_segments < 8 || hole_segments > 128)
+    throw InputError(fmt::format("world.hole_segments: expected 8..128, got {}", hole_segments));
+  require_in_range("world.resistance_smoothing", resistance_smoothing, 1e-4, 1.0);
+  require_in_range("world.rolling_slip_limit", rolling_slip_limit, 1e-3, 1.0);
+  require_in_range("world.ground_time_constant", ground_time_constant, 2.0 * timestep, 0.1);
+}
+
+std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
+  const auto& b = f.bounds;
+  const int ncol = static_cast<int>(std::lround((b[1] - b[0]) / f.cell_size)) + 1;
+  const int nrow = static_cast<int>(std::lround((b[3] - b[2]) / f.cell_size)) + 1;
+  double z_min = 1e9, z_max = -1e9;
+  for (int r = 0; r < nrow; ++r)
+    for (int c = 0; c < ncol; ++c) {
+      const double z = f.height(b[0] + (b[1] - b[0]) * c / (ncol - 1), b[2] + (b[3] - b[2]) * r / (nrow - 1));
+      z_min = std::min(z_min, z);
+      z_max = std::max(z_max, z);
+    }
+  const double elevation = std::max(z_max - z_min, 1e-4);
+  const double cx = 0.5 * (b[0] + b[1]), cy = 0.5 * (b[2] + b[3]);
+  const double rx = 0.5 * (b[1] - b[0]), ry = 0.5 * (b[3] - b[2]);
+  const double wall_t = f.borders.thickness;
+  const double wall_bottom = z_min - 0.05, wall_top = z_max + f.borders.height;
+  const double wall_hz = 0.5 * (wall_top - wall_bottom), wall_cz = 0.5 * (wall_top + wall_bottom);
+  const double wall_zeta = damping_ratio_for_restitution(f.borders.restitution);
+  const double hole_r = 0.5 * f.hole.diameter;
+  const double seg_half = hole_r * std::tan(kPi / o.hole_segments) + 0.002;
+  const double seg_t = 0.01;
+
+  std::string x;
+  x += fmt::format(R"(<mujoco model="minigolf-{}">
+  <compiler angle="radian"/>
+  <option timestep="{}" gravity="0 0 {}" cone="{}" impratio="{}"/>
+  <size nuserdata="{}"/>
+  <visual><global offwidth="1280" offheight="720"/></visual>
+  <asset>
+    <hfield name="lane" nrow="{}" ncol="{}" size="{} {} {} 0.05"/>
+  </asset>
+  <worldbody>
+    <light pos="{} {} 3" dir="0 0 -1" directional="true"/>
+    <geom name="lane_surface" type="hfield" hfield="lane" pos="{} {} {}" rgba="0.2 0.6 0.25 1"
+          contype="0" conaffinity="0"/>
+    <body name="ground_contact" mocap="true" pos="{} {} {}">
+      <geom name="ground" type="box" size="0.15 0.15 0.01" pos="0 0 -0.01" rgba="0 0 0 0"
+            contype="{}" conaffinity="{}" condim="3" priority="1" friction="{} 0 0"
+            solref="{} 1"/>
+    </body>
+)",
+                   f.name, o.timestep, -kGravity, "elliptic", 10, kUserSize, nrow, ncol, rx, ry, elevation, cx, cy,
+                   cx, cy, z_min, f.tee[0], f.tee[1], f.height(f.tee[0], f.tee[1]), kLaneGroup,
+                   kNoAffinity, f.sliding_friction, o.ground_time_constant);
+  const auto wall = [&](const char* name, double px, double py, double hx, double hy) {
+    x += fmt::format(R"(    <geom name="{}" type="box" pos="{} {} {}" size="{} {} {}" rgba="0.45 0.3 0.2 1"
+          contype="{}" conaffinity="{}" condim="3" priority="1" friction="0.2 0 0" solref="0.004 {}"/>
+)",
+                     name, px, py, wall_cz, hx, hy, wall_hz, kLaneGroup, kNoAffinity, wall_zeta);
+  };
+  wall("border_x_min", b[0] - 0.5 * wall_t, cy, 0.5 * wall_t, ry + wall_t);
+  wall("border_x_max", b[1] + 0.5 * wall_t, cy, 0.5 * wall_t, ry + wall_t);
+  wall("border_y_min", cx, b[2] - 0.5 * wall_t, rx, 0.5 * wall_t);
+  wall("border_y_max", cx, b[3] + 0.5 * wall_t, rx, 0.5 * wall_t);
+  x += fmt::format(R"(    <body name="ball" pos="{} {} {}">
+      <freejoint name="ball"/>
+      <geom name="ball" type="sphere" size="{}" mass="{}" rgba="1 1 1 1"
+            contype="{}" conaffinity="{}" condim="3" priority="0"/>
+    </body>
+    <body name="hole_floor" mocap="true" pos="{} {} {}">
+      <geom name="hole_floor" type="cylinder" size="{} 0.005" pos="0 0 -0.005" rgba="0.1 0.1 0.1 1"
+            contype="{}" conaffinity="{}" condim="3" priority="1" friction="0.5 0 0" solref="0.002 1"/>
+    </body>
+)",
+                   f.tee[0], f.tee[1], f.height(f.tee[0], f.tee[1]) + f.ball.radius, f.ball.radius,
+                   f.ball.mass, kLaneGroup | kCupGroup, kLaneGroup | kCupGroup, f.hole.position[0],
+                   f.hole.position[1], z_min - 1.0, hole_r + seg_t, kCupGroup, kNoAffinity);
+  for (int i = 0; i < o.hole_segments; ++i)
+    x += fmt::format(R"(    <body name="hole_wall_{}" mocap="true" pos="0 0 {}">
+      <geom type="box" size="{} {} {}" pos="0 0 {}" rgba="0.1 0.1 0.1 1" contype="{}"
+            conaffinity="{}" condim="3" priority="1" friction="0.3 0 0" solref="0.002 1"/>
+    </body>
+)",
+                     i, z_min - 1.0, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, -0.5 * f.hole.depth,
+                     kCupGroup, kNoAffinity);
+  x += "  </worldbody>\n</mujoco>\n";
+  return x;
+}
+
+World::World(field::Field field, const WorldOptions& options)
+    : field_(std::move(field)), options_(options) {
+  options_.validate();
+  field_.validate();
+  mjcf_ = build_world_mjcf(field_, options_);
+
+  // Compile from memory through MuJoCo's virtual file system.
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* kName = "world.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(mjcf_.size())) != 0)
+    throw Error("MuJoCo: cannot create the in-memory model file");
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kName)], mjcf_.data(), mjcf_.size());
+  char error[1024] = "";
+  model_.reset(mj_loadXML(kName, vfs.get(), error, sizeof error));
+  mj_deleteVFS(vfs.get());
+  if (!model_) throw Error(fmt::format("MuJoCo rejected the generated model: {}", error));
+
+  mjModel* m = model_.get();
+  ids_.ball_body = mj_name2id(m, mjOBJ_BODY, "ball");
+  ids_.ball_geom = mj_name2id(m, mjOBJ_GEOM, "ball");
+  const int ball_joint = mj_name2id(m, mjOBJ_JOINT, "ball");
+  ids_.ball_qpos = m->jnt_qposadr[ball_joint];
+  ids_.ball_dof = m->jnt_dofadr[ball_joint];
+  ids_.ground_geom = mj_name2id(m, mjOBJ_GEOM, "ground");
+  ids_.ground_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "ground_contact")];
+  ids_.surface_geom = mj_name2id(m, mjOBJ_GEOM, "lane_surface");
+  ids_.hole_floor_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_floor")];
+  ids_.first_wall_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_wall_0")];
+
+  // Fill the heightfield from the surface function (normalised to [0, 1] of the elevation).
+  const int hf = 0;
+  const int nrow = m->hfield_nrow[hf], ncol = m->hfield_ncol[hf];
+  const double elevation = m->hfield_size[4 * hf + 2];
+  const double z0 = m->geom_pos[3 * ids_.surface_geom + 2];
+  const auto& b = field_.bounds;
+  float* data = m->hfield_data + m->hfield_adr[hf];
+  for (int r = 0; r < nrow; ++r)
+    for (int c = 0; c < ncol; ++c) {
+      const double z = field_.height(b[0] + (b[1] - b[0]) * c / (ncol - 1),
+                                     b[2] + (b[3] - b[2]) * r / (nrow - 1));
+      data[r * ncol + c] = static_cast<float>(std::clamp((z - z0) / elevation, 0.0, 1.0));
+    }
+
+  // One process-wide filter; it acts only on mjData marked as ours (see userdata layout).
+  mjcb_contactfilter = hole_contact_filter;
+}
+
+DataPtr World::make_data() const {
+  DataPtr d(mj_makeData(model_.get()));
+  if (!d) throw Error("MuJoCo: cannot allocate simulation data");
+  reset(d.get());
+  return d;
+}
+
+void World::reset(mjData* d) const {
+  mj_resetData(model_.get(), d);
+  d->userdata[kUserMagic] = kMagic;
+  d->userdata[kUserBallGeom] = ids_.ball_geom;
+  d->userdata[kUserGroundGeom] = ids_.ground_geom;
+  d->userdata[kUserGroundNormal] = 0.0;
+  set_hole(d, field_.hole.position);
+  place_ball(d, field_.tee);
+}
+
+void World::set_hole(mjData* d, std::array<double, 2> p) const {
+  field::check_hole_position(field_, p);
+  const double r = 0.5 * field_.hole.diameter;
+  const double zc = field_.height(p[0], p[1]);
+  const auto g = field_.surface.gradient(p[0], p[1]);
+  const double rim_drop = std::hypot(g[0], g[1]) * r;
+  if (rim_drop + 0.002 > field_.hole.depth)
+    throw InputError(fmt::format("hole position: ground at ({}, {}) is too steep for a hole {} m "
+                                 "deep (the rim drops {:.3f} m across it)",
+                                 p[0], p[1], field_.hole.depth, rim_drop));
+  d->userdata[kUserHoleX] = p[0];
+  d->userdata[kUserHoleY] = p[1];
+  d->userdata[kUserHoleRadius] = r;
+  mjtNum* floor = d->mocap_pos + 3 * ids_.hole_floor_mocap;
+  floor[0] = p[0];
+  floor[1] = p[1];
+  floor[2] = zc - field_.hole.depth;
+  const int n = options_.hole_segments;
+  const double seg_t = 0.01;
+  for (int i = 0; i < n; ++i) {
+    const double phi = 2.0 * kPi * i / n;
+    const double ux = std::cos(phi), uy = std::sin(phi);
+    // Top of the segment at the lowest ground along its chord, so it never sticks out.
+    const double half = r * std::tan(kPi / n);
+    double top = field_.height(p[0] + r * ux, p[1] + r * uy);
+    for (double s : {-half, half})
+      top = std::min(top, field_.height(p[0] + r * ux - s * uy, p[1] + r * uy + s * ux));
+    mjtNum* pos = d->mocap_pos + 3 * (ids_.first_wall_mocap + i);
+    pos[0] = p[0] + (r + 0.5 * seg_t) * ux;
+    pos[1] = p[1] + (r + 0.5 * seg_t) * uy;
+    pos[2] = top;
+    mjtNum* quat = d->mocap_quat + 4 * (ids_.first_wall_mocap + i);
+    quat[0] = std::cos(0.5 * phi);
+    quat[1] = 0.0;
+    quat[2] = 0.0;
+    quat[3] = std::sin(0.5 * phi);
+  }
+}
+
+std::array<double, 2> World::hole_position(const mjData* d) const {
+  return {d->userdata[kUserHoleX], d->userdata[kUserHoleY]};
+}
+
+void World::place_ball(mjData* d, std::array<double, 2> xy) const {
+  mjtNum* q = d->qpos + ids_.ball_qpos;
+  q[0] = xy[0];
+  q[1] = xy[1];
+  q[2] = field_.height(xy[0], xy[1]) + field_.ball.radius;
+  q[3] = 1.0;
+  q[4] = q[5] = q[6] = 0.0;
+  std::fill(d->qvel + ids_.ball_dof, d->qvel + ids_.ball_dof + 6, 0.0);
+  update_ground_contact(d);
+  mj_forward(model_.get(), d);
+}
+
+double World::ground_normal_force(const mjData* d) const {
+  double normal = 0.0;
+  mjtNum force[6];
+  for (int i = 0; i < d->ncon; ++i) {
+    if (!is_ball_ground(d->contact[i])) continue;
+    mj_contactForce(model_.get(), d, i, force);
+    normal += force[0];
+  }
+  return normal;
+}
+
+void World::step(mjData* d) const {
+  const mjModel* m = model_.get();
+  update_ground_contact(d);
+  // Split step: collisions for the current state first, so the rolling-resistance torque acts
+  // only while the ball touches the ground now (a torque from the last contact force applied
+  // during a hop would spin the ball down in the air).
+  mj_step1(m, d);
+  mjtNum* torque = d->xfrc_applied + 6 * ids_.ball_body + 3;
+  torque[0] = torque[1] = torque[2] = 0.0;
+  const double normal_force = d->userdata[kUserGroundNormal];
+  mjtNum normal[3] = {0, 0, 0};
+  bool touching = false;
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    if (!is_ball_ground(c)) continue;
+    touching = true;
+    // The contact normal points from geom1 to geom2; we want it out of the ground.
+    const double sign = c.geom1 == ids_.ground_geom ? 1.0 : -1.0;
+    for (int k = 0; k < 3; ++k) normal[k] += sign * c.frame[k];
+  }
+  if (touching && normal_force > 0.0) {
+    mju_normalize3(normal);
+    // Penner: torque rho r N against the rolling part of the spin (spin about the contact
+    // normal excluded). A free joint's angular velocity is in the body frame.
+    mjtNum spin_world[3];
+    mju_rotVecQuat(spin_world, d->qvel + ids_.ball_dof + 3, d->qpos + ids_.ball_qpos + 3);
+    mjtNum roll[3];
+    const mjtNum along = mju_dot3(spin_world, normal);
+    for (int k = 0; k < 3; ++k) roll[k] = spin_world[k] - along * normal[k];
+    const double spin = mju_norm3(roll);
+    // Slip of the contact point, v + w x (-r n): rolling resistance is a rolling effect; while
+    // the ball still slides, kinetic friction governs it (Penner's slide-then-roll model).
+    mjtNum arm[3], slip[3];
+    for (int k = 0; k < 3; ++k) arm[k] = -field_.ball.radius * normal[k];
+    mju_cross(slip, spin_world, arm);
+    const mjtNum* v = d->qvel + ids_.ball_dof;
+    for (int k = 0; k < 3; ++k) slip[k] += v[k];
+    const mjtNum slip_normal = mju_dot3(slip, normal);
+    for (int k = 0; k < 3; ++k) slip[k] -= slip_normal * normal[k];
+    const double rolling = std::clamp(
+        (options_.rolling_slip_limit - mju_norm3(slip)) / (0.5 * options_.rolling_slip_limit), 0.0, 1.0);
+    if (spin > 0.0 && rolling > 0.0) {
+      const double magnitude = rolling * field_.rolling_resistance * field_.ball.radius *
+                               normal_force * std::min(1.0, spin / options_.resistance_smoothing);
+      for (int k = 0; k < 3; ++k) torque[k] = -magnitude * roll[k] / spin;
+    }
+  }
+  mj_step2(m, d);
+  d->userdata[kUserGroundNormal] = ground_normal_force(d);
+}
+
+void World::update_ground_contact(mjData* d) const {
+  // Foot point p of the ball centre c on the surface: c = p + r n(p), solved by fixed-point
+  // iteration on p's horizontal coordinates (converges for curvature radii above r).
+  const mjtNum* c = d->qpos + ids_.ball_qpos;
+  const double r = field_.ball.radius;
+  double px = c[0], py = c[1];
+  mjtNum n[3] = {0, 0, 1};
+  for (int it = 0; it < 3; ++it) {
+    const auto g = field_.surface.gradient(px, py);
+    const double inv = 1.0 / std::sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
+    n[0] = -g[0] * inv;
+    n[1] = -g[1] * inv;
+    n[2] = inv;
+    px = c[0] - r * n[0];
+    py = c[1] - r * n[1];
+  }
+  mjtNum* pos = d->mocap_pos + 3 * ids_.ground_mocap;
+  pos[0] = px;
+  pos[1] = py;
+  pos[2] = field_.height(px, py);
+  // Rotation taking +z to n, about the horizontal axis z x n.
+  mjtNum* quat = d->mocap_quat + 4 * ids_.ground_mocap;
+  const double s = std::hypot(n[0], n[1]);
+  if (s < 1e-12) {
+    quat[0] = 1.0;
+    quat[1] = quat[2] = quat[3] = 0.0;
+  } else {
+    const double half = 0.5 * std::atan2(s, n[2]);
+    quat[0] = std::cos(half);
+    quat[1] = -n[1] / s * std::sin(half);
+    quat[2] = n[0] / s * std::sin(half);
+    quat[3] = 0.0;
+  }
+}
+
+bool World::is_ball_ground(const mjContact& c) const {
+  return (c.geom1 == ids_.ball_geom && c.geom2 == ids_.ground_geom) ||
+         (c.geom2 == ids_.ball_geom && c.geom1 == ids_.ground_geom);
+}
+
+}  // namespace mg::sim

@@ -1,0 +1,109 @@
+#pragma once
+/// The MuJoCo world of one field: heightfield lane, borders, ball and a movable hole.
+///
+/// Model/data split: a `World` is immutable after construction (it owns the `mjModel` and the
+/// field); every simulation run owns its own `mjData` (`World::make_data`). The hole is a set of
+/// mocap bodies (cup wall segments and floor), so moving it between putts changes `mjData` only
+/// and never re-parses the model.
+///
+/// Ground contact: MuJoCo 2.2.2's heightfield contacts make a rolling ball drift sideways and
+/// lose speed (measured: 2-9 cm per metre, 5-17 % speed; README "Physics"), so the heightfield
+/// is drawn but does not collide. The ball touches an exact, analytic surface instead: a mocap
+/// box whose top face is moved every step onto the tangent plane at the ball's foot point.
+///
+/// Ball physics (see README "Physics"): condim-3 contacts for sliding friction, plus an explicit
+/// rolling-resistance torque of magnitude rho r N opposing the ball's rolling (Penner's model),
+/// applied before every step. The ground under the hole opening is removed by a contact filter
+/// (a heightfield cannot have a hole), so the ball falls into a geometric cup and lips out or
+/// drops as a real ball does.
+#include <array>
+#include <string>
+
+#include "field/field.hpp"
+#include "sim/mujoco_handles.hpp"
+
+namespace mg::sim {
+
+/// Simulation settings shared by every world.
+struct WorldOptions {
+  double timestep = 0.001;   ///< [s]; PHYSICS.md: at or under 1 ms for a small fast sphere
+  int hole_segments = 24;    ///< cup wall made of this many boxes
+  /// Below this rolling speed the resistance torque is scaled down linearly, so a resting ball
+  /// does not chatter (a regularised Coulomb law). [rad/s]
+  double resistance_smoothing = 0.05;
+  /// Rolling resistance acts fully while the contact point slips slower than half this, and
+  /// fades out linearly up to it: a sliding ball obeys kinetic friction only. [m/s]
+  double rolling_slip_limit = 0.05;
+  /// solref time constant of ball-ground contacts [s]. Stiffer contacts make a sliding ball hop
+  /// (measured: 11 mm at 2 m/s with 0.002 s, under 0.5 mm with 0.02 s); softer ones sink it
+  /// in. See README "Physics".
+  double ground_time_constant = 0.02;
+  void validate() const;
+};
+
+/// Indices into the MuJoCo model that the simulation needs.
+struct WorldIds {
+  int ball_body = -1;
+  int ball_geom = -1;
+  int ball_qpos = -1;  ///< first of 7 qpos of the ball's free joint
+  int ball_dof = -1;   ///< first of 6 dofs
+  int ground_geom = -1;     ///< the tangent contact box (see `World::update_ground_contact`)
+  int ground_mocap = -1;
+  int surface_geom = -1;    ///< the heightfield (drawn, never collides)
+  int hole_floor_mocap = -1;
+  int first_wall_mocap = -1;  ///< cup wall segments are consecutive mocap bodies
+};
+
+class World {
+ public:
+  /// Builds the model for `field` (validated). Throws `InputError` for an unusable field.
+  explicit World(field::Field field, const WorldOptions& options = {});
+
+  const mjModel* model() const { return model_.get(); }
+  const field::Field& field() const { return field_; }
+  const WorldOptions& options() const { return options_; }
+  const WorldIds& ids() const { return ids_; }
+  /// The generated MJCF text (for debugging and `minigolf field show --mjcf`).
+  const std::string& mjcf() const { return mjcf_; }
+
+  /// A fresh `mjData` for this model, hole at the field's default position.
+  DataPtr make_data() const;
+  /// Resets `d` to the model's initial state: ball on the tee, hole at the field's default.
+  void reset(mjData* d) const;
+
+  /// Moves the hole (cup walls, floor, contact filter) to `position`. Throws `InputError` if
+  /// the hole would leave the lane or sit on ground too steep for its depth.
+  void set_hole(mjData* d, std::array<double, 2> position) const;
+  /// The hole position currently set in `d`.
+  std::array<double, 2> hole_position(const mjData* d) const;
+
+  /// Puts the ball at rest on the surface at `xy` (centre one radius above the ground).
+  void place_ball(mjData* d, std::array<double, 2> xy) const;
+
+  /// One physics step: `mj_step1`, the rolling-resistance torque (ball-ground contact now, normal
+  /// force of the last solve), `mj_step2`.
+  /// Real-time safe: no allocation, no exceptions.
+  void step(mjData* d) const;
+
+  /// Total normal force of ground contacts on the ball in the current `mjData` [N].
+  double ground_normal_force(const mjData* d) const;
+
+  /// Moves the ground contact box so its top face is the surface's tangent plane under the
+  /// ball. Real-time safe.
+  void update_ground_contact(mjData* d) const;
+
+  /// True for a contact between the ball and the lane's ground.
+  bool is_ball_ground(const mjContact& c) const;
+
+ private:
+  field::Field field_;
+  WorldOptions options_;
+  ModelPtr model_;
+  WorldIds ids_;
+  std::string mjcf_;
+};
+
+/// Builds the MJCF text for a field (exposed for tests).
+std::string build_world_mjcf(const field::Field& field, const WorldOptions& options);
+
+}  // namespace mg::sim
