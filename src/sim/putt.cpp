@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "core/check.hpp"
+#include "core/error.hpp"
 
 namespace mg::sim {
 
@@ -12,6 +15,10 @@ void PuttRequest::validate() const {
   require_in_range("speed", speed, 1e-3, 15.0);
   require_in_range("max_duration", max_duration, 0.01, 600.0);
   require_in_range("record_interval", record_interval, 0.0, 10.0);
+  if (start) {
+    require_finite("start.x", (*start)[0]);
+    require_finite("start.y", (*start)[1]);
+  }
 }
 
 std::string to_string(PuttEnd end) {
@@ -56,6 +63,18 @@ bool OutcomeTracker::update(const mjData* d) {
     outcome_.end = PuttEnd::kSunk;
     return true;
   }
+  // Dropped into a (shallow) cup and staying there.
+  const double drop = 0.5 * std::min(world_->field().hole.depth, r);
+  if (over_hole && q[2] < rim_z_ + r - drop) {
+    if (inside_since_ < 0.0) inside_since_ = d->time;
+    if (d->time - inside_since_ >= rules_.settle_time) {
+      outcome_.sunk = true;
+      outcome_.end = PuttEnd::kSunk;
+      return true;
+    }
+  } else {
+    inside_since_ = -1.0;
+  }
   const auto& b = world_->field().bounds;
   if (!std::isfinite(q[0] + q[1] + q[2]) || q[2] < lowest_z_ - 0.3 || q[0] < b[0] - 0.2 ||
       q[0] > b[1] + 0.2 || q[1] < b[2] - 0.2 || q[1] > b[3] + 0.2) {
@@ -84,17 +103,31 @@ PuttOutcome simulate_putt(const World& world, mjData* d, std::array<double, 2> h
   world.reset(d);
   world.set_hole(d, hole);
   const auto& f = world.field();
-  world.place_ball(d, f.tee);
+  const auto start = request.start.value_or(f.tee);
+  const auto& b = f.bounds;
+  const double r = f.ball.radius;
+  if (start[0] < b[0] + r || start[0] > b[1] - r || start[1] < b[2] + r || start[1] > b[3] - r)
+    throw InputError(fmt::format("start: ({}, {}) is outside the lane", start[0], start[1]));
+  world.place_ball(d, start);
 
-  // Launch along the surface tangent in the requested horizontal direction, without spin.
+  // Launch along the surface tangent in the requested horizontal direction.
   const double cx = std::cos(request.angle), cy = std::sin(request.angle);
-  const auto g = f.surface.gradient(f.tee[0], f.tee[1]);
+  const auto g = f.surface.gradient(start[0], start[1]);
   const double cz = g[0] * cx + g[1] * cy;
   const double scale = request.speed / std::sqrt(1.0 + cz * cz);
   mjtNum* v = d->qvel + world.ids().ball_dof;
   v[0] = cx * scale;
   v[1] = cy * scale;
   v[2] = cz * scale;
+  if (request.rolling_start) {
+    // w = n x v / r in the world frame, stored in the ball's body frame (identity at rest).
+    const double inv = 1.0 / std::sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
+    const double n[3] = {-g[0] * inv, -g[1] * inv, inv};
+    v[3] = (n[1] * v[2] - n[2] * v[1]) / r;
+    v[4] = (n[2] * v[0] - n[0] * v[2]) / r;
+    v[5] = (n[0] * v[1] - n[1] * v[0]) / r;
+  }
+  world.update_ground_contact(d);
   mj_forward(m, d);
 
   OutcomeTracker tracker(world, d, rules);

@@ -1,6 +1,7 @@
 #pragma once
 /// A ball-only putt: launch the ball from the tee and simulate until the outcome is decided.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,10 @@ namespace mg::sim {
 struct PuttRequest {
   double angle = 0.0;   ///< [rad] counter-clockwise from +x (the default hitting direction)
   double speed = 1.0;   ///< [m/s] launch speed along the surface, no spin (the ball slides first)
+  /// Where the ball starts (default: the field's tee) [m].
+  std::optional<std::array<double, 2>> start;
+  /// Start already rolling (spin matched to the speed) instead of sliding without spin.
+  bool rolling_start = false;
   double max_duration = 30.0;        ///< [s] give up after this much simulated time
   double record_interval = 0.0;      ///< [s] trajectory sample spacing; 0 = no trajectory
   void validate() const;
@@ -43,6 +48,10 @@ std::string to_string(PuttEnd end);
 struct OutcomeRules {
   double rest_speed = 0.005;     ///< [m/s] below this the ball counts as still
   double rest_time = 0.25;       ///< [s] ... for this long
+  /// A ball that has dropped into the cup (centre below its rolling height by half the depth,
+  /// capped at half its radius) and stays there this long is holed, even if it keeps rolling
+  /// around a shallow cup. [s]
+  double settle_time = 0.3;
 };
 
 /// Resets `d`, sets the hole, launches the ball from the tee and simulates. Deterministic: the
@@ -66,6 +75,7 @@ class OutcomeTracker {
   double hole_radius_;
   double rim_z_;
   double still_since_ = -1.0;
+  double inside_since_ = -1.0;
   double lowest_z_;
   PuttOutcome outcome_;
 };

@@ -58,6 +58,7 @@ void WorldOptions::validate() const {
   if (hole_segments < 8 || hole_segments > 128)
     throw InputError(fmt::format("world.hole_segments: expected 8..128, got {}", hole_segments));
   require_in_range("world.resistance_smoothing", resistance_smoothing, 1e-4, 1.0);
+  require_in_range("world.cup_restitution", cup_restitution, 0.0, 0.95);
   require_in_range("world.rolling_slip_limit", rolling_slip_limit, 1e-3, 1.0);
   require_in_range("world.ground_time_constant", ground_time_constant, 2.0 * timestep, 0.1);
 }
@@ -132,11 +133,11 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
   for (int i = 0; i < o.hole_segments; ++i)
     x += fmt::format(R"(    <body name="hole_wall_{}" mocap="true" pos="0 0 {}">
       <geom type="box" size="{} {} {}" pos="0 0 {}" rgba="0.1 0.1 0.1 1" contype="{}"
-            conaffinity="{}" condim="3" priority="1" friction="0.3 0 0" solref="0.002 1"/>
+            conaffinity="{}" condim="3" priority="1" friction="0.3 0 0" solref="0.004 {}"/>
     </body>
 )",
                      i, z_min - 1.0, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, -0.5 * f.hole.depth,
-                     kCupGroup, kNoAffinity);
+                     kCupGroup, kNoAffinity, damping_ratio_for_restitution(o.cup_restitution));
   x += "  </worldbody>\n</mujoco>\n";
   return x;
 }
@@ -168,6 +169,7 @@ World::World(field::Field field, const WorldOptions& options)
   ids_.ground_geom = mj_name2id(m, mjOBJ_GEOM, "ground");
   ids_.ground_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "ground_contact")];
   ids_.surface_geom = mj_name2id(m, mjOBJ_GEOM, "lane_surface");
+  ids_.hole_floor_geom = mj_name2id(m, mjOBJ_GEOM, "hole_floor");
   ids_.hole_floor_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_floor")];
   ids_.first_wall_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_wall_0")];
 
@@ -289,7 +291,7 @@ void World::step(mjData* d) const {
     if (!is_ball_ground(c)) continue;
     touching = true;
     // The contact normal points from geom1 to geom2; we want it out of the ground.
-    const double sign = c.geom1 == ids_.ground_geom ? 1.0 : -1.0;
+    const double sign = c.geom1 == ids_.ball_geom ? -1.0 : 1.0;
     for (int k = 0; k < 3; ++k) normal[k] += sign * c.frame[k];
   }
   if (touching && normal_force > 0.0) {
@@ -359,8 +361,8 @@ void World::update_ground_contact(mjData* d) const {
 }
 
 bool World::is_ball_ground(const mjContact& c) const {
-  return (c.geom1 == ids_.ball_geom && c.geom2 == ids_.ground_geom) ||
-         (c.geom2 == ids_.ball_geom && c.geom1 == ids_.ground_geom);
+  const int other = c.geom1 == ids_.ball_geom ? c.geom2 : c.geom2 == ids_.ball_geom ? c.geom1 : -1;
+  return other >= 0 && (other == ids_.ground_geom || other == ids_.hole_floor_geom);
 }
 
 }  // namespace mg::sim

@@ -31,6 +31,8 @@ struct WorldOptions {
   /// Below this rolling speed the resistance torque is scaled down linearly, so a resting ball
   /// does not chatter (a regularised Coulomb law). [rad/s]
   double resistance_smoothing = 0.05;
+  /// Bounce of the ball off the cup's wall (plastic liner) [-].
+  double cup_restitution = 0.3;
   /// Rolling resistance acts fully while the contact point slips slower than half this, and
   /// fades out linearly up to it: a sliding ball obeys kinetic friction only. [m/s]
   double rolling_slip_limit = 0.05;
@@ -51,6 +53,7 @@ struct WorldIds {
   int ground_mocap = -1;
   int surface_geom = -1;    ///< the heightfield (drawn, never collides)
   int hole_floor_mocap = -1;
+  int hole_floor_geom = -1;
   int first_wall_mocap = -1;  ///< cup wall segments are consecutive mocap bodies
 };
 
@@ -92,7 +95,7 @@ class World {
   /// ball. Real-time safe.
   void update_ground_contact(mjData* d) const;
 
-  /// True for a contact between the ball and the lane's ground.
+  /// True for a contact between the ball and what it rolls on (the ground or the cup floor).
   bool is_ball_ground(const mjContact& c) const;
 
  private:
