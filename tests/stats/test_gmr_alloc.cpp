@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "stats/gmr.hpp"
+#include "stats/gpr.hpp"
 #include "test_util.hpp"
 
 #if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__)
@@ -53,6 +54,28 @@ TEST(StatsGmrAlloc, PredictDoesNotAllocate) {
   g_counting = false;
   EXPECT_EQ(g_mallocs.load(), 0);
   EXPECT_TRUE(mean.allFinite() && cov.allFinite());
+#endif
+}
+
+TEST(StatsGprAlloc, GpPredictDoesNotAllocate) {
+#ifndef MG_COUNT_MALLOC
+  GTEST_SKIP() << "malloc interposition needs glibc without sanitizers";
+#else
+  const Eigen::MatrixXd x = Eigen::MatrixXd::Random(20, 2);
+  const Eigen::VectorXd y = x.col(0) + x.col(1);
+  const GpModel m = make_gp_model(x, y, GpHyperparameters{Eigen::Vector2d(0.5, 0.7), 1.0, 0.1});
+  GpWorkspace ws = make_gp_workspace(m);
+  Eigen::Vector2d q(0.1, 0.2);
+  double sum = 0.0;
+  g_mallocs = 0;
+  g_counting = true;
+  for (int i = 0; i < 100; ++i) {
+    q(0) = 0.01 * i;
+    sum += gp_predict(m, q, ws).mean;
+  }
+  g_counting = false;
+  EXPECT_EQ(g_mallocs.load(), 0);
+  EXPECT_TRUE(std::isfinite(sum));
 #endif
 }
 

@@ -1,0 +1,459 @@
+#include "learning/learner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "core/io.hpp"
+#include "core/rng.hpp"
+#include "stats/gmm_io.hpp"
+#include "stats/gmr.hpp"
+
+namespace mg::learning {
+namespace {
+
+Standardizer make_standardizer(const Eigen::MatrixXd& m) {
+  Standardizer s;
+  s.mean = m.colwise().mean().transpose();
+  s.scale.resize(m.cols());
+  for (Eigen::Index j = 0; j < m.cols(); ++j) {
+    const double sd = std::sqrt((m.col(j).array() - s.mean(j)).square().mean());
+    s.scale(j) = sd > 0.0 && std::isfinite(sd) ? sd : 1.0;
+  }
+  return s;
+}
+
+Eigen::MatrixXd apply(const Standardizer& s, const Eigen::MatrixXd& m) {
+  return (m.rowwise() - s.mean.transpose()).array().rowwise() / s.scale.transpose().array();
+}
+
+std::vector<int> iota_dims(int first, int count) {
+  std::vector<int> v(static_cast<std::size_t>(count));
+  std::iota(v.begin(), v.end(), first);
+  return v;
+}
+
+// Mean squared GMR error (standardised outputs) of K components by cross-validation.
+double cv_error(const Eigen::MatrixXd& joint, int num_inputs, int k, int folds, const std::vector<int>& fold_of,
+                std::uint64_t seed, const stats::EmOptions& em) {
+  const Eigen::Index n = joint.rows();
+  const int num_outputs = static_cast<int>(joint.cols()) - num_inputs;
+  double sse = 0.0;
+  for (int f = 0; f < folds; ++f) {
+    std::vector<Eigen::Index> train_rows, test_rows;
+    for (Eigen::Index i = 0; i < n; ++i) (fold_of[static_cast<std::size_t>(i)] == f ? test_rows : train_rows).push_back(i);
+    if (test_rows.empty()) continue;
+    if (static_cast<int>(train_rows.size()) < k) return std::numeric_limits<double>::infinity();
+    Eigen::MatrixXd train(static_cast<Eigen::Index>(train_rows.size()), joint.cols());
+    for (std::size_t i = 0; i < train_rows.size(); ++i) train.row(static_cast<Eigen::Index>(i)) = joint.row(train_rows[i]);
+    mg::Rng rng(mg::derive_seed(seed, static_cast<std::uint64_t>(1000 * k + f)));
+    const stats::Gmm g = stats::fit_gmm(train, k, rng, em).gmm;
+    const stats::GmrConditioner cond(g, iota_dims(0, num_inputs), iota_dims(num_inputs, num_outputs));
+    auto ws = cond.make_workspace();
+    Eigen::VectorXd out(num_outputs);
+    for (Eigen::Index r : test_rows) {
+      cond.predict_mean(joint.row(r).head(num_inputs).transpose(), out, ws);
+      sse += (out - joint.row(r).tail(num_outputs).transpose()).squaredNorm();
+    }
+  }
+  return sse / static_cast<double>(n);
+}
+
+stats::EmResult fit_gmm_model(const Eigen::MatrixXd& joint, int num_inputs, const TrainOptions& opt,
+                              std::uint64_t seed) {
+  const int n = static_cast<int>(joint.rows());
+  mg::Rng rng(seed);
+  if (opt.num_gaussians > 0) {
+    if (opt.num_gaussians > n)
+      throw InputError(fmt::format("number of Gaussians: expected at most {} (the number of training rows), got {}", n,
+                                   opt.num_gaussians));
+    return stats::fit_gmm(joint, opt.num_gaussians, rng, opt.em);
+  }
+  if (opt.selection == ComponentSelection::kBic) return stats::fit_gmm_bic(joint, opt.max_gaussians, rng, opt.em);
+  // Cross-validation: seeded shuffle into folds, lowest held-out GMR error wins (ties: fewer Gaussians).
+  const int folds = std::min(opt.cv_folds, n);
+  std::vector<int> order(static_cast<std::size_t>(n));
+  std::iota(order.begin(), order.end(), 0);
+  for (int i = n - 1; i > 0; --i) std::swap(order[static_cast<std::size_t>(i)], order[rng() % static_cast<std::uint64_t>(i + 1)]);
+  std::vector<int> fold_of(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) fold_of[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])] = i % folds;
+  int best_k = 1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 1; k <= std::min(opt.max_gaussians, n); ++k) {
+    const double e = cv_error(joint, num_inputs, k, folds, fold_of, seed, opt.em);
+    if (e < best * (1.0 - 1e-12)) {
+      best = e;
+      best_k = k;
+    }
+  }
+  return stats::fit_gmm(joint, best_k, rng, opt.em);
+}
+
+double nlpd_term(double y, double mean, double var) {
+  return 0.5 * std::log(2.0 * std::numbers::pi * var) + 0.5 * (y - mean) * (y - mean) / var;
+}
+
+// ---- JSON reading helpers: every failure names the field.
+const nlohmann::json& field(const nlohmann::json& j, const char* key, std::string_view where) {
+  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object, got {}", where, j.type_name()));
+  if (!j.contains(key)) throw InputError(fmt::format("{}: missing field '{}'", where, key));
+  return j.at(key);
+}
+double number(const nlohmann::json& j, const char* key, std::string_view where) {
+  const auto& v = field(j, key, where);
+  if (!v.is_number()) throw InputError(fmt::format("{}.{}: expected a number, got {}", where, key, v.type_name()));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) throw InputError(fmt::format("{}.{}: expected a finite number", where, key));
+  return d;
+}
+std::string text(const nlohmann::json& j, const char* key, std::string_view where) {
+  const auto& v = field(j, key, where);
+  if (!v.is_string()) throw InputError(fmt::format("{}.{}: expected a string, got {}", where, key, v.type_name()));
+  return v.get<std::string>();
+}
+std::vector<std::string> names(const nlohmann::json& j, const char* key, std::string_view where) {
+  const auto& v = field(j, key, where);
+  if (!v.is_array() || v.empty())
+    throw InputError(fmt::format("{}.{}: expected a non-empty array of names", where, key));
+  std::vector<std::string> out;
+  for (const auto& e : v) {
+    if (!e.is_string() || e.get<std::string>().empty())
+      throw InputError(fmt::format("{}.{}: expected non-empty strings, got {}", where, key, e.dump()));
+    out.push_back(e.get<std::string>());
+  }
+  return out;
+}
+
+nlohmann::json report_json(const Model& m, int o) {
+  const FitReport& r = m.reports[static_cast<std::size_t>(o)];
+  nlohmann::json j;
+  if (m.method == Method::kGpr) {
+    j["length_scales"] = stats::vector_to_json(r.length_scales);
+    j["signal_std"] = r.signal_std;
+    j["noise_std"] = r.noise_std;
+    j["log_marginal_likelihood"] = r.log_marginal_likelihood;
+  } else {
+    j["n_gaussians"] = r.n_gaussians;
+    j["log_likelihood"] = r.log_likelihood;
+    j["bic"] = r.bic;
+  }
+  return j;
+}
+
+}  // namespace
+
+std::string_view method_name(Method m) {
+  switch (m) {
+    case Method::kGpr: return "gpr";
+    case Method::kGmr: return "gmr";
+    case Method::kJointGmr: return "joint-gmr";
+  }
+  return "?";
+}
+
+Method parse_method(std::string_view name) {
+  for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr})
+    if (name == method_name(m)) return m;
+  throw InputError(fmt::format("method: expected one of gpr, gmr, joint-gmr, got '{}'", name));
+}
+
+std::string_view selection_name(ComponentSelection s) { return s == ComponentSelection::kBic ? "bic" : "cv"; }
+
+ComponentSelection parse_selection(std::string_view name) {
+  if (name == "bic") return ComponentSelection::kBic;
+  if (name == "cv") return ComponentSelection::kCrossValidation;
+  throw InputError(fmt::format("component selection: expected bic or cv, got '{}'", name));
+}
+
+void TrainOptions::validate() const {
+  if (num_gaussians < 0) throw InputError(fmt::format("number of Gaussians: expected >= 1 (or 0 = choose), got {}", num_gaussians));
+  if (max_gaussians < 1) throw InputError(fmt::format("max Gaussians: expected >= 1, got {}", max_gaussians));
+  if (cv_folds < 2) throw InputError(fmt::format("cross-validation folds: expected >= 2, got {}", cv_folds));
+  if (restarts < 1) throw InputError(fmt::format("restarts: expected >= 1, got {}", restarts));
+  em.validate();
+  for (const auto& g : gpr) g.validate();
+}
+
+Model train(const Dataset& data, const TrainOptions& options) {
+  options.validate();
+  const int n = data.size();
+  const int ni = static_cast<int>(data.input_names.size());
+  const int no = static_cast<int>(data.output_names.size());
+  if (n < 2) throw InputError(fmt::format("{}: expected at least 2 training rows, got {}", data.source, n));
+  if (data.inputs.cols() != ni || data.outputs.cols() != no || data.outputs.rows() != n || ni < 1 || no < 1)
+    throw InputError(fmt::format("{}: inconsistent dataset shape", data.source));
+  if (!options.gpr.empty() && options.gpr.size() != 1 && static_cast<int>(options.gpr.size()) != no)
+    throw InputError(fmt::format("GPR options: expected 1 or {} sets (one per output), got {}", no, options.gpr.size()));
+
+  Model m;
+  m.method = options.method;
+  m.input_names = data.input_names;
+  m.output_names = data.output_names;
+  m.seed = options.seed;
+  m.reports.resize(static_cast<std::size_t>(no));
+  const double log_n = std::log(static_cast<double>(n));
+
+  if (options.method == Method::kGpr) {
+    for (int o = 0; o < no; ++o) {
+      stats::GprOptions g = options.gpr.empty() ? stats::GprOptions{}
+                            : options.gpr.size() == 1 ? options.gpr[0]
+                                                      : options.gpr[static_cast<std::size_t>(o)];
+      g.restarts = options.restarts;
+      mg::Rng rng(mg::derive_seed(options.seed, static_cast<std::uint64_t>(o)));
+      m.gps.push_back(stats::fit_gpr(data.inputs, data.outputs.col(o), rng, g));
+      const stats::GpModel& gp = m.gps.back();
+      FitReport& r = m.reports[static_cast<std::size_t>(o)];
+      r.length_scales = gp.hyper.length_scales;
+      r.signal_std = gp.hyper.signal_std;
+      r.noise_std = gp.hyper.noise_std;
+      r.log_marginal_likelihood = gp.log_marginal_likelihood;
+    }
+    return m;
+  }
+
+  m.input_standardizer = make_standardizer(data.inputs);
+  m.output_standardizer = make_standardizer(data.outputs);
+  const Eigen::MatrixXd xs = apply(m.input_standardizer, data.inputs);
+  const Eigen::MatrixXd ys = apply(m.output_standardizer, data.outputs);
+  stats::EmOptions em = options.em;
+  em.kmeans_restarts = options.restarts;
+  TrainOptions opt = options;
+  opt.em = em;
+  const double log_in_scale = m.input_standardizer.scale.array().log().sum();
+  auto fit = [&](const Eigen::MatrixXd& y_block, double log_out_scale, std::uint64_t stream) {
+    Eigen::MatrixXd joint(n, ni + y_block.cols());
+    joint << xs, y_block;
+    const stats::EmResult r = fit_gmm_model(joint, ni, opt, mg::derive_seed(options.seed, stream));
+    FitReport rep;
+    rep.n_gaussians = r.gmm.num_components();
+    // Back to data units: the standardisation's Jacobian.
+    rep.log_likelihood = r.log_likelihood - n * (log_in_scale + log_out_scale);
+    rep.bic = -2.0 * rep.log_likelihood +
+              stats::gmm_num_parameters(rep.n_gaussians, static_cast<int>(joint.cols())) * log_n;
+    m.gmms.push_back(r.gmm);
+    return rep;
+  };
+  if (options.method == Method::kGmr) {
+    for (int o = 0; o < no; ++o)
+      m.reports[static_cast<std::size_t>(o)] =
+          fit(ys.col(o), std::log(m.output_standardizer.scale(o)), static_cast<std::uint64_t>(o));
+  } else {
+    const FitReport rep = fit(ys, m.output_standardizer.scale.array().log().sum(), 0);
+    for (auto& r : m.reports) r = rep;
+  }
+  return m;
+}
+
+Predictions predict(const Model& m, const Eigen::MatrixXd& queries) {
+  const int ni = m.num_inputs();
+  const int no = m.num_outputs();
+  if (queries.cols() != ni)
+    throw InputError(fmt::format("predict: queries: expected {} input columns, got {}", ni, queries.cols()));
+  if (!queries.allFinite()) throw InputError("predict: queries: expected finite values");
+  const Eigen::Index n = queries.rows();
+  Predictions p;
+  p.mean.resize(n, no);
+  p.std.resize(n, no);
+  if (m.method == Method::kGpr) {
+    for (int o = 0; o < no; ++o) {
+      const stats::GpModel& gp = m.gps[static_cast<std::size_t>(o)];
+      stats::GpWorkspace ws = stats::make_gp_workspace(gp);
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const stats::GpPrediction g = stats::gp_predict(gp, queries.row(i).transpose(), ws);
+        p.mean(i, o) = g.mean;
+        p.std(i, o) = std::sqrt(g.variance());
+      }
+    }
+    return p;
+  }
+  const Eigen::MatrixXd xs = apply(m.input_standardizer, queries);
+  const bool joint = m.method == Method::kJointGmr;
+  for (std::size_t g = 0; g < m.gmms.size(); ++g) {
+    const int outs = joint ? no : 1;
+    const stats::GmrConditioner cond(m.gmms[g], iota_dims(0, ni), iota_dims(ni, outs));
+    auto ws = cond.make_workspace();
+    Eigen::VectorXd mean(outs);
+    Eigen::MatrixXd cov(outs, outs);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      cond.predict(xs.row(i).transpose(), mean, cov, ws);
+      for (int k = 0; k < outs; ++k) {
+        const int o = joint ? k : static_cast<int>(g);
+        const double s = m.output_standardizer.scale(o);
+        p.mean(i, o) = m.output_standardizer.mean(o) + s * mean(k);
+        p.std(i, o) = s * std::sqrt(std::max(cov(k, k), 0.0));
+      }
+    }
+  }
+  return p;
+}
+
+std::vector<Score> score(const Model& m, const Dataset& v) {
+  if (v.input_names != m.input_names || v.output_names != m.output_names)
+    throw InputError(fmt::format("{}: expected columns {} -> {} (as the model), got {} -> {}", v.source,
+                                 fmt::join(m.input_names, ","), fmt::join(m.output_names, ","),
+                                 fmt::join(v.input_names, ","), fmt::join(v.output_names, ",")));
+  const Predictions p = predict(m, v.inputs);
+  std::vector<Score> out(static_cast<std::size_t>(m.num_outputs()));
+  const double n = static_cast<double>(v.size());
+  for (int o = 0; o < m.num_outputs(); ++o) {
+    Score& s = out[static_cast<std::size_t>(o)];
+    for (Eigen::Index i = 0; i < v.inputs.rows(); ++i) {
+      const double var = std::max(p.std(i, o) * p.std(i, o), std::numeric_limits<double>::min());
+      s.mse += (v.outputs(i, o) - p.mean(i, o)) * (v.outputs(i, o) - p.mean(i, o)) / n;
+      s.nlpd += nlpd_term(v.outputs(i, o), p.mean(i, o), var) / n;
+    }
+  }
+  return out;
+}
+
+nlohmann::json report_to_json(const Model& m) {
+  nlohmann::json j = nlohmann::json::object();
+  for (int o = 0; o < m.num_outputs(); ++o) j[m.output_names[static_cast<std::size_t>(o)]] = report_json(m, o);
+  return j;
+}
+
+nlohmann::json model_to_json(const Model& m) {
+  nlohmann::json j;
+  j["format"] = "minigolf-learner";
+  j["format_version"] = kModelFormatVersion;
+  j["method"] = std::string(method_name(m.method));
+  j["inputs"] = m.input_names;
+  j["outputs"] = m.output_names;
+  j["seed"] = m.seed;
+  if (m.method == Method::kGpr) {
+    j["training_inputs"] = stats::matrix_to_json(m.gps.front().inputs);
+    j["gps"] = nlohmann::json::array();
+    for (std::size_t o = 0; o < m.gps.size(); ++o) {
+      const stats::GpModel& gp = m.gps[o];
+      j["gps"].push_back({{"output", m.output_names[o]},
+                          {"length_scales", stats::vector_to_json(gp.hyper.length_scales)},
+                          {"signal_std", gp.hyper.signal_std},
+                          {"noise_std", gp.hyper.noise_std},
+                          {"training_targets", stats::vector_to_json(gp.targets)}});
+    }
+  } else {
+    j["input_standardization"] = {{"mean", stats::vector_to_json(m.input_standardizer.mean)},
+                                  {"scale", stats::vector_to_json(m.input_standardizer.scale)}};
+    j["output_standardization"] = {{"mean", stats::vector_to_json(m.output_standardizer.mean)},
+                                   {"scale", stats::vector_to_json(m.output_standardizer.scale)}};
+    j["gmms"] = nlohmann::json::array();
+    for (const auto& g : m.gmms) j["gmms"].push_back(stats::gmm_to_json(g));
+  }
+  j["fit"] = report_to_json(m);
+  return j;
+}
+
+Model model_from_json(const nlohmann::json& j, std::string_view where) {
+  const std::string fmt_name = text(j, "format", where);
+  if (fmt_name != "minigolf-learner")
+    throw InputError(fmt::format("{}: format: expected \"minigolf-learner\", got \"{}\"", where, fmt_name));
+  const auto& ver = field(j, "format_version", where);
+  if (!ver.is_number_integer() || ver.get<long long>() != kModelFormatVersion)
+    throw InputError(fmt::format("{}: format_version: expected {} (this build reads version {}), got {}", where,
+                                 kModelFormatVersion, kModelFormatVersion, ver.dump()));
+  Model m;
+  m.method = parse_method(text(j, "method", where));
+  m.input_names = names(j, "inputs", where);
+  m.output_names = names(j, "outputs", where);
+  const auto& seed = field(j, "seed", where);
+  if (!seed.is_number_unsigned() && !(seed.is_number_integer() && seed.get<long long>() >= 0))
+    throw InputError(fmt::format("{}.seed: expected a non-negative integer, got {}", where, seed.dump()));
+  m.seed = seed.get<std::uint64_t>();
+  const int ni = m.num_inputs();
+  const int no = m.num_outputs();
+  const std::string w(where);
+
+  if (m.method == Method::kGpr) {
+    const Eigen::MatrixXd x = stats::json_to_matrix(field(j, "training_inputs", where), w + ".training_inputs");
+    if (x.cols() != ni || x.rows() < 1)
+      throw InputError(fmt::format("{}.training_inputs: expected rows of {} values, got {} x {}", where, ni, x.rows(), x.cols()));
+    const auto& gps = field(j, "gps", where);
+    if (!gps.is_array() || static_cast<int>(gps.size()) != no)
+      throw InputError(fmt::format("{}.gps: expected an array of {} GPs (one per output)", where, no));
+    for (int o = 0; o < no; ++o) {
+      const std::string gw = fmt::format("{}.gps[{}]", where, o);
+      const auto& g = gps[static_cast<std::size_t>(o)];
+      if (text(g, "output", gw) != m.output_names[static_cast<std::size_t>(o)])
+        throw InputError(fmt::format("{}.output: expected \"{}\"", gw, m.output_names[static_cast<std::size_t>(o)]));
+      stats::GpHyperparameters h;
+      h.length_scales = stats::json_to_vector(field(g, "length_scales", gw), gw + ".length_scales");
+      h.signal_std = number(g, "signal_std", gw);
+      h.noise_std = number(g, "noise_std", gw);
+      const Eigen::VectorXd y = stats::json_to_vector(field(g, "training_targets", gw), gw + ".training_targets");
+      try {
+        m.gps.push_back(stats::make_gp_model(x, y, h));
+      } catch (const Error& e) {
+        throw InputError(fmt::format("{}: {}", gw, e.what()));
+      }
+    }
+  } else {
+    auto standardizer = [&](const char* key, int dim) {
+      const auto& s = field(j, key, where);
+      const std::string sw = fmt::format("{}.{}", where, key);
+      Standardizer st;
+      st.mean = stats::json_to_vector(field(s, "mean", sw), sw + ".mean");
+      st.scale = stats::json_to_vector(field(s, "scale", sw), sw + ".scale");
+      if (st.mean.size() != dim || st.scale.size() != dim || !(st.scale.array() > 0.0).all())
+        throw InputError(fmt::format("{}: expected {} means and {} positive scales", sw, dim, dim));
+      return st;
+    };
+    m.input_standardizer = standardizer("input_standardization", ni);
+    m.output_standardizer = standardizer("output_standardization", no);
+    const auto& gmms = field(j, "gmms", where);
+    const int expected = m.method == Method::kGmr ? no : 1;
+    const int dim = m.method == Method::kGmr ? ni + 1 : ni + no;
+    if (!gmms.is_array() || static_cast<int>(gmms.size()) != expected)
+      throw InputError(fmt::format("{}.gmms: expected an array of {} GMMs", where, expected));
+    for (int g = 0; g < expected; ++g) {
+      const std::string gw = fmt::format("{}.gmms[{}]", where, g);
+      m.gmms.push_back(stats::gmm_from_json(gmms[static_cast<std::size_t>(g)], gw));
+      if (m.gmms.back().dim() != dim)
+        throw InputError(fmt::format("{}: expected dimension {}, got {}", gw, dim, m.gmms.back().dim()));
+    }
+  }
+
+  // Fit summaries: recorded at training time (informational).
+  const auto& fit = field(j, "fit", where);
+  m.reports.resize(static_cast<std::size_t>(no));
+  for (int o = 0; o < no; ++o) {
+    const std::string& name = m.output_names[static_cast<std::size_t>(o)];
+    const std::string fw = fmt::format("{}.fit.{}", where, name);
+    const auto& r = field(fit, name.c_str(), fmt::format("{}.fit", where));
+    FitReport& rep = m.reports[static_cast<std::size_t>(o)];
+    if (m.method == Method::kGpr) {
+      rep.length_scales = stats::json_to_vector(field(r, "length_scales", fw), fw + ".length_scales");
+      rep.signal_std = number(r, "signal_std", fw);
+      rep.noise_std = number(r, "noise_std", fw);
+      rep.log_marginal_likelihood = number(r, "log_marginal_likelihood", fw);
+    } else {
+      const auto& k = field(r, "n_gaussians", fw);
+      if (!k.is_number_integer()) throw InputError(fmt::format("{}.n_gaussians: expected an integer", fw));
+      rep.n_gaussians = k.get<int>();
+      rep.log_likelihood = number(r, "log_likelihood", fw);
+      rep.bic = number(r, "bic", fw);
+    }
+  }
+  return m;
+}
+
+void save_model(const Model& model, const std::filesystem::path& path) {
+  write_file_atomic(path, model_to_json(model).dump(2) + "\n");
+}
+
+Model load_model(const std::filesystem::path& path) {
+  const std::string content = read_text_file(path);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(content);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(fmt::format("{}: not valid JSON ({})", path.string(), e.what()));
+  }
+  return model_from_json(j, path.string());
+}
+
+}  // namespace mg::learning

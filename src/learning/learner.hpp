@@ -1,0 +1,113 @@
+#pragma once
+/// Hitting-parameter learners (thesis 3.3): xi -> (theta, v) by GPR (one GP per output), GMR
+/// (one GMM per output over (xi, output)) or joint GMR (one GMM over (xi, all outputs)).
+///
+/// GMM-based models work on standardised data (each column: (value - mean) / std, std 1 for a
+/// constant column), so `reg_covar` is scale-free; the GPs standardise their output themselves.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "learning/dataset.hpp"
+#include "stats/gmm.hpp"
+#include "stats/gpr.hpp"
+
+namespace mg::learning {
+
+enum class Method { kGpr, kGmr, kJointGmr };
+
+/// "gpr", "gmr", "joint-gmr".
+std::string_view method_name(Method m);
+/// Inverse of `method_name`; throws `mg::InputError` listing the choices.
+Method parse_method(std::string_view name);
+
+/// How the number of Gaussians is chosen when `TrainOptions::num_gaussians` is 0.
+enum class ComponentSelection { kBic, kCrossValidation };
+std::string_view selection_name(ComponentSelection s);
+ComponentSelection parse_selection(std::string_view name);  ///< "bic" | "cv"
+
+struct TrainOptions {
+  Method method = Method::kGpr;
+  int num_gaussians = 0;     ///< K >= 1, or 0 to choose K in 1..max_gaussians
+  ComponentSelection selection = ComponentSelection::kBic;
+  int max_gaussians = 5;     ///< upper end of the search (>= 1)
+  int cv_folds = 5;          ///< folds for cross-validation (>= 2; capped at N)
+  int restarts = 5;          ///< GPR optimiser starts and k-means++ seedings (>= 1)
+  std::uint64_t seed = 1;    ///< everything random derives from it
+  stats::EmOptions em{300, 1e-8, 1e-3, 5};  ///< reg_covar in standardised units
+  /// GPR initial guesses and bounds (data units): empty = defaults; one entry = all outputs;
+  /// else one per output. Their `restarts` is overridden by `restarts` above.
+  std::vector<stats::GprOptions> gpr;
+  void validate() const;  ///< throws `mg::InputError` naming the field
+};
+
+/// Per-output summary of a fit, in data units.
+struct FitReport {
+  // GPR
+  Eigen::VectorXd length_scales;  ///< input units
+  double signal_std = 0.0;
+  double noise_std = 0.0;
+  double log_marginal_likelihood = 0.0;
+  // GMM-based
+  int n_gaussians = 0;
+  double log_likelihood = 0.0;  ///< of the training data under the GMM (data units) [nats]
+  double bic = 0.0;
+};
+
+/// Column standardisation z = (x - mean) / scale.
+struct Standardizer {
+  Eigen::VectorXd mean;   ///< (D)
+  Eigen::VectorXd scale;  ///< (D), > 0
+};
+
+/// A trained learner. Immutable value type; save/load with `save_model`/`load_model`.
+struct Model {
+  Method method = Method::kGpr;
+  std::vector<std::string> input_names;
+  std::vector<std::string> output_names;
+  std::uint64_t seed = 0;                 ///< the seed it was trained with (recorded)
+  std::vector<stats::GpModel> gps;        ///< GPR: one per output
+  Standardizer input_standardizer;        ///< GMM-based
+  Standardizer output_standardizer;       ///< GMM-based
+  std::vector<stats::Gmm> gmms;           ///< GMR: one per output over (inputs, output); joint: one over (inputs, outputs)
+  std::vector<FitReport> reports;         ///< (O)
+  int num_inputs() const { return static_cast<int>(input_names.size()); }
+  int num_outputs() const { return static_cast<int>(output_names.size()); }
+};
+
+/// Predictive means and standard deviations of the outputs (data units), each (N x O). The std
+/// is that of an observation (it includes the noise).
+struct Predictions {
+  Eigen::MatrixXd mean;
+  Eigen::MatrixXd std;
+};
+
+Model train(const Dataset& data, const TrainOptions& options);
+
+/// `queries` is (N x I) in the model's input order.
+Predictions predict(const Model& model, const Eigen::MatrixXd& queries);
+
+struct Score {
+  double mse = 0.0;   ///< mean square error (thesis Definition 6.1), output units^2
+  double nlpd = 0.0;  ///< mean negative log predictive density [nats]
+};
+/// Scores per output (O) on a dataset with the model's columns.
+std::vector<Score> score(const Model& model, const Dataset& validation);
+
+/// Model file: JSON with "format": "minigolf-learner" and "format_version": 1.
+inline constexpr int kModelFormatVersion = 1;
+nlohmann::json model_to_json(const Model& model);
+Model model_from_json(const nlohmann::json& j, std::string_view where = "model");
+void save_model(const Model& model, const std::filesystem::path& path);  ///< atomic write
+Model load_model(const std::filesystem::path& path);
+
+/// Per-output fit report as JSON: {"<output>": {...}, ...} (GPR: length_scales, signal_std,
+/// noise_std, log_marginal_likelihood; GMM: n_gaussians, log_likelihood, bic).
+nlohmann::json report_to_json(const Model& model);
+
+}  // namespace mg::learning
