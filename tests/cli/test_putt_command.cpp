@@ -1,0 +1,76 @@
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "run_command.hpp"
+
+namespace mg::cli::testing {
+namespace {
+
+TEST(PuttCommand, JsonHasTheOutcomeKeys) {
+  const auto r = run_minigolf("putt --field flat --hole 1.5,0 --angle 0 --speed 2.0 --ball-only --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["sunk"].is_boolean());
+  EXPECT_EQ(j["rest_position"].size(), 2u);
+  EXPECT_GE(j["closest_approach"].get<double>(), 0.0);
+  EXPECT_GT(j["duration"].get<double>(), 0.0);
+}
+
+TEST(PuttCommand, AimedPuttOnTheFlatSinks) {
+  // Rolls (5/7) v0 after the slide; a 1.8 m/s launch arrives slowly at 1.2 m.
+  const auto r = run_minigolf("putt --field flat --hole 1.2,0 --angle 0 --speed 1.8 --ball-only --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(nlohmann::json::parse(r.out)["sunk"].get<bool>()) << r.out;
+}
+
+TEST(PuttCommand, TrajectoryCsvHasTheDocumentedHeader) {
+  const auto path = std::filesystem::temp_directory_path() / "mg_traj.csv";
+  const auto r = run_minigolf("putt --field arctan --angle 0.1 --speed 1.5 --ball-only --trajectory " + path.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(path);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "t,x,y,z,vx,vy,vz");
+  int rows = 0;
+  for (std::string line; std::getline(in, line);) ++rows;
+  EXPECT_GT(rows, 10);
+  std::filesystem::remove(path);
+}
+
+TEST(PuttCommand, ReadableLineWithoutJson) {
+  const auto r = run_minigolf("putt --field multiple-hills --angle 0 --speed 2.5 --ball-only");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(count_lines(r.out), 1);
+  EXPECT_NE(r.out.find("multiple-hills"), std::string::npos);
+}
+
+TEST(PuttCommand, BadInputGivesOneLineErrorAndNonZeroExit) {
+  for (const std::string& args : {
+           std::string("putt --field flat --angle nan --speed 1 --ball-only"),
+           std::string("putt --field flat --angle 0 --speed inf --ball-only"),
+           std::string("putt --field flat --angle 0 --speed -2 --ball-only"),
+           std::string("putt --field flat --angle 0 --speed 99 --ball-only"),
+           std::string("putt --field flat --hole 9,0 --angle 0 --speed 1 --ball-only"),
+           std::string("putt --field flat --hole 1,x --angle 0 --speed 1 --ball-only"),
+           std::string("putt --field flat --hole 1 --angle 0 --speed 1 --ball-only"),
+           std::string("putt --field mars --angle 0 --speed 1 --ball-only"),
+           std::string("putt --field flat --angle 0 --speed 1"),
+       }) {
+    const auto r = run_minigolf(args);
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_TRUE(r.out.empty()) << args;
+  }
+  EXPECT_NE(run_minigolf("putt --field flat --speed 1 --ball-only").exit_code, 0);  // missing --angle
+}
+
+TEST(PuttCommand, SamePuttPrintsTheSameBits) {
+  const std::string args = "putt --field regular-hill --angle 0.02 --speed 2.4 --ball-only --json";
+  EXPECT_EQ(run_minigolf(args).out, run_minigolf(args).out);
+}
+
+}  // namespace
+}  // namespace mg::cli::testing
