@@ -5,6 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.hpp"
+#include "core/check.hpp"
+#include "core/csv.hpp"
+#include "core/io.hpp"
 #include "field/field.hpp"
 #include "field/field_json.hpp"
 
@@ -52,6 +55,33 @@ void add_field_commands(CLI::App& app) {
                f.rolling_resistance, 5.0 / 7.0 * f.rolling_resistance * 9.81);
     fmt::print("  sliding friction   {}\n", f.sliding_friction);
     fmt::print("  surface            {}\n", j["surface"].dump());
+  });
+
+  struct HeightsOptions {
+    std::string field;
+    std::string output;
+    double cell = 0.02;
+  };
+  auto heights_opts = std::make_shared<HeightsOptions>();
+  CLI::App* heights =
+      field_cmd->add_subcommand("heights", "Sample the surface on a grid (CSV x,y,z, metres)");
+  heights->add_option("field", heights_opts->field, "Shipped field name or path")->required();
+  heights->add_option("-o,--output", heights_opts->output, "Output CSV file")->required();
+  heights->add_option("--cell", heights_opts->cell, "Grid spacing [m]")->capture_default_str();
+  heights->callback([heights_opts] {
+    require_in_range("--cell", heights_opts->cell, 0.002, 1.0);
+    const field::Field f = field::load_field(heights_opts->field);
+    const auto& b = f.bounds;
+    const int nx = static_cast<int>((b[1] - b[0]) / heights_opts->cell) + 1;
+    const int ny = static_cast<int>((b[3] - b[2]) / heights_opts->cell) + 1;
+    std::vector<std::vector<double>> rows;
+    rows.reserve(static_cast<std::size_t>(nx * ny));
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const double x = b[0] + i * heights_opts->cell, y = b[2] + j * heights_opts->cell;
+        rows.push_back({x, y, f.height(x, y)});
+      }
+    write_file_atomic(heights_opts->output, format_csv({"x", "y", "z"}, rows));
   });
 }
 

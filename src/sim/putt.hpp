@@ -47,7 +47,7 @@ std::string to_string(PuttEnd end);
 /// Decides when a putt is over (shared by the ball-only path and, later, the arm).
 struct OutcomeRules {
   double rest_speed = 0.005;     ///< [m/s] below this the ball counts as still
-  double rest_time = 0.25;       ///< [s] ... for this long
+  double rest_time = 0.1;        ///< [s] ... for this long
   /// A ball that has dropped into the cup (centre below its rolling height by half the depth,
   /// capped at half its radius) and stays there this long is holed, even if it keeps rolling
   /// around a shallow cup. [s]

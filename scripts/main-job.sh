@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The main job (for now): a demonstration putt on each shipped field, ball only, with the
+# outcome printed and the trajectories drawn over the fields in out/demo/fields.png.
+# The launch parameters below are example inputs; what happens is simulated when this runs.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin=./build/src/cli/minigolf
+out=out/demo
+mkdir -p "$out"
+
+echo "== shipped fields"
+$bin field list
+
+# field  angle[rad]  speed[m/s]
+putts=(
+  "flat 0.00 2.5"
+  "flat 0.12 2.2"
+  "multiple-hills -0.03 2.9"
+  "multiple-hills 0.10 2.6"
+  "regular-hill 0.00 2.8"
+  "regular-hill 0.03 2.3"
+  "arctan -0.01 2.8"
+  "arctan 0.37 3.1"
+)
+echo "== demo putts (ball only)"
+i=0
+for p in "${putts[@]}"; do
+  read -r field angle speed <<<"$p"
+  $bin putt --ball-only --field "$field" --angle "$angle" --speed "$speed" \
+    --trajectory "$out/putt_${i}_${field}.csv" --json >"$out/putt_${i}_${field}.json"
+  $bin putt --ball-only --field "$field" --angle "$angle" --speed "$speed"
+  i=$((i + 1))
+done
+for field in flat multiple-hills regular-hill arctan; do
+  $bin field heights "$field" -o "$out/heights_${field}.csv" --cell 0.02
+  $bin field show "$field" --json >"$out/field_${field}.json"
+done
+/usr/bin/python3 scripts/plot_demo.py "$out"
+echo "== figure: $out/fields.png"
