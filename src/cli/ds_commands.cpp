@@ -206,17 +206,17 @@ void add_rollout(CLI::App& ds) {
   cmd->add_option("model", o->model, "Hitting model JSON (or 'default')")->required();
   cmd->add_option("--start", o->start, "Start position X,Y,Z [m, world]")->capture_default_str();
   cmd->add_option("--angle", o->angle, "Hitting angle theta [rad] about +z from psi0")->capture_default_str();
-  cmd->add_option("--speed", o->speed, "Hitting speed at the ball [m/s] (default: the model's v(x*))");
+  CLI::Option* speed_opt = cmd->add_option("--speed", o->speed, "Hitting speed at the ball [m/s] (default: the model's v(x*))");
   cmd->add_option("--modulator", o->modulator, "constant | sine")->capture_default_str();
   cmd->add_option("--dt", o->dt, "Integration step [s] (RK4)")->capture_default_str();
   cmd->add_option("-o,--output", o->out, "Trajectory CSV: t,x,y,z,vx,vy,vz");
   cmd->add_flag("--json", o->json, "Print one JSON object");
-  cmd->callback([o] {
+  cmd->callback([o, speed_opt] {
     const ds::HittingModel model = ds::read_hitting_model(resolve_model(o->model));
     ds::HittingCommand c;
     c.start = parse_point("--start", o->start);
     c.angle = o->angle;
-    c.speed = o->speed < 0.0 ? model.default_speed() : o->speed;
+    c.speed = speed_opt->count() > 0 ? o->speed : model.default_speed();
     c.modulator = ds::parse_modulator(o->modulator);
     ds::RolloutOptions ro;
     ro.dt = o->dt;
