@@ -84,6 +84,7 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
   const double hole_r = 0.5 * f.hole.diameter;
   const double seg_half = hole_r * std::tan(kPi / o.hole_segments) + 0.002;
   const double seg_t = 0.01;
+  const bool heightfield = o.ground == GroundContact::kHeightfield;
 
   std::string x;
   x += fmt::format(R"(<mujoco model="minigolf-{}">
@@ -97,16 +98,18 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
   <worldbody>
     <light pos="{} {} 3" dir="0 0 -1" directional="true"/>
     <geom name="lane_surface" type="hfield" hfield="lane" pos="{} {} {}" rgba="0.2 0.6 0.25 1"
-          contype="0" conaffinity="0"/>
+          contype="{}" conaffinity="{}" condim="3" priority="1" friction="{} 0 0" solref="{} 1"/>
     <body name="ground_contact" mocap="true" pos="{} {} {}">
       <geom name="ground" type="box" size="0.15 0.15 0.01" pos="0 0 -0.01" rgba="0 0 0 0"
             contype="{}" conaffinity="{}" condim="3" priority="1" friction="{} 0 0"
             solref="{} 1"/>
     </body>
 )",
-                   f.name, o.timestep, -kGravity, "elliptic", 10, kUserSize, nrow, ncol, rx, ry, elevation, cx, cy,
-                   cx, cy, z_min, f.tee[0], f.tee[1], f.height(f.tee[0], f.tee[1]), kLaneGroup,
-                   kNoAffinity, f.sliding_friction, o.ground_time_constant);
+                   f.name, o.timestep, -kGravity, "elliptic", 10, kUserSize, nrow, ncol, rx, ry,
+                   elevation, cx, cy, cx, cy, z_min, heightfield ? kLaneGroup : 0, kNoAffinity,
+                   f.sliding_friction, o.ground_time_constant, f.tee[0], f.tee[1],
+                   f.height(f.tee[0], f.tee[1]), heightfield ? 0 : kLaneGroup, kNoAffinity,
+                   f.sliding_friction, o.ground_time_constant);
   const auto wall = [&](const char* name, double px, double py, double hx, double hy) {
     x += fmt::format(R"(    <geom name="{}" type="box" pos="{} {} {}" size="{} {} {}" rgba="0.45 0.3 0.2 1"
           contype="{}" conaffinity="{}" condim="3" priority="1" friction="0.2 0 0" solref="0.004 {}"/>
@@ -166,7 +169,8 @@ World::World(field::Field field, const WorldOptions& options)
   const int ball_joint = mj_name2id(m, mjOBJ_JOINT, "ball");
   ids_.ball_qpos = m->jnt_qposadr[ball_joint];
   ids_.ball_dof = m->jnt_dofadr[ball_joint];
-  ids_.ground_geom = mj_name2id(m, mjOBJ_GEOM, "ground");
+  ids_.ground_geom = mj_name2id(
+      m, mjOBJ_GEOM, options_.ground == GroundContact::kHeightfield ? "lane_surface" : "ground");
   ids_.ground_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "ground_contact")];
   ids_.surface_geom = mj_name2id(m, mjOBJ_GEOM, "lane_surface");
   ids_.hole_floor_geom = mj_name2id(m, mjOBJ_GEOM, "hole_floor");

@@ -24,8 +24,15 @@
 
 namespace mg::sim {
 
+/// What the ball rolls on.
+enum class GroundContact {
+  kTangentPlane,  ///< exact analytic surface through a moving tangent plane (default)
+  kHeightfield,   ///< MuJoCo's heightfield contacts (kept for comparison; see README)
+};
+
 /// Simulation settings shared by every world.
 struct WorldOptions {
+  GroundContact ground = GroundContact::kTangentPlane;
   double timestep = 0.001;   ///< [s]; PHYSICS.md: at or under 1 ms for a small fast sphere
   int hole_segments = 24;    ///< cup wall made of this many boxes
   /// Below this rolling speed the resistance torque is scaled down linearly, so a resting ball
@@ -49,9 +56,9 @@ struct WorldIds {
   int ball_geom = -1;
   int ball_qpos = -1;  ///< first of 7 qpos of the ball's free joint
   int ball_dof = -1;   ///< first of 6 dofs
-  int ground_geom = -1;     ///< the tangent contact box (see `World::update_ground_contact`)
+  int ground_geom = -1;     ///< what the ball rolls on: the tangent box or the heightfield
   int ground_mocap = -1;
-  int surface_geom = -1;    ///< the heightfield (drawn, never collides)
+  int surface_geom = -1;    ///< the heightfield (drawn; collides only in kHeightfield mode)
   int hole_floor_mocap = -1;
   int hole_floor_geom = -1;
   int first_wall_mocap = -1;  ///< cup wall segments are consecutive mocap bodies
