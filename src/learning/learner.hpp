@@ -37,7 +37,7 @@ struct TrainOptions {
   ComponentSelection selection = ComponentSelection::kBic;
   int max_gaussians = 5;     ///< upper end of the search (>= 1)
   int cv_folds = 5;          ///< folds for cross-validation (>= 2; capped at N)
-  int restarts = 5;          ///< GPR optimiser starts and k-means++ seedings (>= 1)
+  int restarts = 10;         ///< GPR optimiser starts and k-means++ seedings (>= 1)
   std::uint64_t seed = 1;    ///< everything random derives from it
   stats::EmOptions em{300, 1e-8, 1e-3, 5};  ///< reg_covar in standardised units
   /// GPR initial guesses and bounds (data units): empty = defaults; one entry = all outputs;

@@ -27,7 +27,7 @@ struct GpHyperparameters {
 /// constant) within [1e-2 s_i, 1e2 s_i]; sf starts at the output std s_y within
 /// [1e-2 s_y, 1e2 s_y]; sn starts at 0.1 s_y within [1e-3 s_y, 2 s_y].
 struct GprOptions {
-  int restarts = 5;                          ///< optimiser starts (>= 1): the initial guess, then log-uniform draws
+  int restarts = 10;                         ///< optimiser starts (>= 1): the initial guess, then log-uniform draws
   Eigen::VectorXd initial_length_scales;     ///< (D) or (1) broadcast; empty = default
   double initial_signal_std = 0.0;           ///< output units; 0 = default
   double initial_noise_std = 0.0;            ///< output units; 0 = default

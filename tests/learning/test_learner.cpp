@@ -1,0 +1,229 @@
+#include "learning/learner.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "core/io.hpp"
+#include "learning_test_util.hpp"
+
+namespace mg::learning {
+namespace {
+
+using testing::flat_field;
+using testing::linear_map;
+
+TrainOptions options(Method m, int k = 0) {
+  TrainOptions o;
+  o.method = m;
+  o.num_gaussians = k;
+  o.seed = 7;
+  return o;
+}
+
+TEST(LearningModel, FlatFieldLawIsRecoveredFromFewNoisyPoints) {
+  const Dataset val = flat_field(300, 999, 0.0);
+  for (int n : {5, 15, 30}) {
+    const Dataset train_set = flat_field(n, 100 + n, 0.01);
+    double prev_gpr = 1e9;
+    for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
+      const Model model = train(train_set, options(m, m == Method::kGpr ? 0 : 2));
+      const std::vector<Score> s = score(model, val);
+      // Angle variance over the validation set is ~0.12 rad^2: a learner must do far better.
+      const double bound = n >= 15 ? (m == Method::kGpr ? 2e-3 : 2e-2) : 6e-2;
+      EXPECT_LT(s[0].mse, bound) << method_name(m) << " n=" << n;
+      EXPECT_LT(s[1].mse, bound) << method_name(m) << " n=" << n;
+      EXPECT_TRUE(std::isfinite(s[0].nlpd) && std::isfinite(s[1].nlpd));
+      if (m == Method::kGpr) prev_gpr = s[0].mse;
+    }
+    (void)prev_gpr;
+  }
+}
+
+TEST(LearningModel, LinearMapIsRecovered) {
+  const Dataset train_set = linear_map(20, 3, 0.01);
+  const Dataset val = linear_map(200, 4, 0.0);
+  for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
+    const Model model = train(train_set, options(m, 1));
+    const std::vector<Score> s = score(model, val);
+    EXPECT_LT(s[0].mse, 1e-3) << method_name(m);
+    EXPECT_LT(s[1].mse, 1e-3) << method_name(m);
+  }
+}
+
+TEST(LearningModel, FarFromTheDataGprRevertsToTheMeanAndGmrContinuesTheTrend) {
+  // Thesis 3.4.1 / figure 3.4.
+  const Dataset train_set = linear_map(25, 5, 0.01);
+  // Far means many length scales away: a linear map gets long length scales (up to 100 times
+  // the inputs' std by default), so go 1000 half-widths out.
+  Eigen::MatrixXd far(1, 2);
+  far << 1000.0, 0.0;
+  const Model gpr_model = train(train_set, options(Method::kGpr));
+  ASSERT_LT(gpr_model.reports[0].length_scales(0), 100.0);
+  const Predictions gpr = predict(gpr_model, far);
+  EXPECT_NEAR(gpr.mean(0, 0), train_set.outputs.col(0).mean(), 1e-6);
+  EXPECT_NEAR(gpr.mean(0, 1), train_set.outputs.col(1).mean(), 1e-6);
+  for (double x : {8.0, 1000.0}) {
+    far << x, 0.0;
+    const double trend = 0.3 + 0.8 * x;
+    for (Method m : {Method::kGmr, Method::kJointGmr}) {
+      const Predictions gmr = predict(train(train_set, options(m, 2)), far);
+      EXPECT_NEAR(gmr.mean(0, 0), trend, 0.05 * trend) << method_name(m) << " x=" << x;
+      EXPECT_TRUE(gmr.std.allFinite());
+    }
+  }
+  // Never NaN, however far.
+  far << 1e150, -1e150;
+  for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
+    const Predictions p = predict(train(train_set, options(m, 2)), far);
+    EXPECT_TRUE(p.mean.allFinite() && p.std.allFinite()) << method_name(m);
+  }
+}
+
+TEST(LearningModel, ConstantInputColumnAndOneDimensionalData) {
+  Dataset d = flat_field(20, 11);
+  Dataset with_const = d;
+  with_const.input_names.push_back("tee_height");
+  with_const.inputs.conservativeResize(Eigen::NoChange, 3);
+  with_const.inputs.col(2).setConstant(0.25);
+  Eigen::MatrixXd q = flat_field(10, 12).inputs;
+  Eigen::MatrixXd q3(q.rows(), 3);
+  q3 << q, Eigen::VectorXd::Constant(q.rows(), 0.25);
+  for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
+    // Enough GPR restarts that both find the global optimum of the marginal likelihood; the
+    // constant column then changes nothing (its distances are all zero).
+    TrainOptions o = options(m, 2);
+    o.restarts = 20;
+    const Predictions a = predict(train(d, o), q);
+    const Predictions b = predict(train(with_const, o), q3);
+    ASSERT_TRUE(b.mean.allFinite() && b.std.allFinite()) << method_name(m);
+    EXPECT_LT((a.mean - b.mean).cwiseAbs().maxCoeff(), m == Method::kGpr ? 1e-6 : 0.02) << method_name(m);
+  }
+  Dataset one;
+  one.source = "1d";
+  one.input_names = {"x"};
+  one.output_names = {"y"};
+  one.inputs = Eigen::VectorXd::LinSpaced(12, 0.0, 3.0);
+  one.outputs = one.inputs.array().sin().matrix();
+  for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
+    const Model model = train(one, options(m));
+    const Predictions p = predict(model, Eigen::VectorXd::Constant(1, 1.5));
+    EXPECT_NEAR(p.mean(0, 0), std::sin(1.5), 0.15) << method_name(m);
+  }
+}
+
+bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+TEST(LearningModel, SaveLoadRoundTripIsBitIdentical) {
+  testing::ScratchDir dir;
+  const Dataset d = flat_field(25, 13);
+  const Eigen::MatrixXd q = flat_field(50, 14).inputs;
+  for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
+    const Model model = train(d, options(m));
+    const auto path = dir / "model.json";
+    save_model(model, path);
+    const Model back = load_model(path);
+    const auto path2 = dir / "model2.json";
+    save_model(back, path2);
+    EXPECT_EQ(read_text_file(path), read_text_file(path2)) << method_name(m);
+    const Predictions a = predict(model, q);
+    const Predictions b = predict(back, q);
+    EXPECT_TRUE(same_bits(a.mean, b.mean)) << method_name(m);
+    EXPECT_TRUE(same_bits(a.std, b.std)) << method_name(m);
+    EXPECT_EQ(report_to_json(model).dump(), report_to_json(back).dump());
+    const auto j = nlohmann::json::parse(read_text_file(path));
+    EXPECT_EQ(j.at("format_version"), kModelFormatVersion);
+    EXPECT_EQ(j.at("method"), std::string(method_name(m)));
+  }
+}
+
+TEST(LearningModel, SameSeedSameModel) {
+  const Dataset d = flat_field(20, 15);
+  for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
+    EXPECT_EQ(model_to_json(train(d, options(m))).dump(), model_to_json(train(d, options(m))).dump());
+  }
+}
+
+void expect_model_error(const nlohmann::json& j, const std::string& needle) {
+  try {
+    model_from_json(j, "m.json");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(LearningModel, BrokenOrIncompatibleModelFilesAreClearErrors) {
+  EXPECT_THROW(load_model(testing::kDataDir / "truncated_model.json"), InputError);
+  try {
+    load_model(testing::kDataDir / "future_model.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("format_version"), std::string::npos) << e.what();
+  }
+  const nlohmann::json gpr = model_to_json(train(flat_field(10, 16), options(Method::kGpr)));
+  const nlohmann::json gmr = model_to_json(train(flat_field(10, 16), options(Method::kGmr, 2)));
+  nlohmann::json j = gpr;
+  j.erase("format_version");
+  expect_model_error(j, "format_version");
+  j = gpr;
+  j["method"] = "svm";
+  expect_model_error(j, "gpr, gmr, joint-gmr");
+  j = gpr;
+  j["gps"][1]["noise_std"] = "high";
+  expect_model_error(j, "gps[1].noise_std");
+  j = gpr;
+  j["gps"][0]["length_scales"] = {1.0};
+  expect_model_error(j, "length scales");
+  j = gmr;
+  j["gmms"][0]["priors"] = {0.2, 0.2};
+  expect_model_error(j, "gmms[0]");
+  j = gmr;
+  j["gmms"].erase(1);
+  expect_model_error(j, "gmms");
+  j = gmr;
+  j["method"] = "joint-gmr";
+  expect_model_error(j, "gmms");
+}
+
+TEST(LearningModel, ScoresMatchTheirDefinitions) {
+  const Dataset d = flat_field(15, 17);
+  const Dataset v = flat_field(40, 18);
+  const Model model = train(d, options(Method::kGmr, 2));
+  const Predictions p = predict(model, v.inputs);
+  const std::vector<Score> s = score(model, v);
+  for (int o = 0; o < 2; ++o) {
+    const Eigen::ArrayXd r = v.outputs.col(o) - p.mean.col(o);
+    const Eigen::ArrayXd var = p.std.col(o).array().square();
+    EXPECT_NEAR(s[o].mse, r.square().mean(), 1e-12);
+    EXPECT_NEAR(s[o].nlpd, (0.5 * (2 * M_PI * var).log() + 0.5 * r.square() / var).mean(), 1e-9);
+  }
+}
+
+TEST(LearningModel, NumberOfGaussiansByBicOrCrossValidation) {
+  const Dataset d = flat_field(30, 19);
+  for (ComponentSelection sel : {ComponentSelection::kBic, ComponentSelection::kCrossValidation}) {
+    TrainOptions o = options(Method::kJointGmr);
+    o.selection = sel;
+    o.max_gaussians = 4;
+    const Model m = train(d, o);
+    EXPECT_GE(m.reports[0].n_gaussians, 1);
+    EXPECT_LE(m.reports[0].n_gaussians, 4);
+    EXPECT_TRUE(std::isfinite(m.reports[0].bic));
+  }
+  TrainOptions too_many = options(Method::kGmr, 31);
+  EXPECT_THROW(train(d, too_many), InputError);
+  TrainOptions bad = options(Method::kGmr);
+  bad.restarts = 0;
+  EXPECT_THROW(train(d, bad), InputError);
+  EXPECT_THROW(parse_method("svm"), InputError);
+  EXPECT_EQ(parse_method("joint-gmr"), Method::kJointGmr);
+}
+
+}  // namespace
+}  // namespace mg::learning
