@@ -104,6 +104,8 @@ void add_fit(CLI::App& ds) {
     model.provenance["demonstrations_file"] = std::filesystem::path(o->demos).filename().string();
     model.provenance["reproduction"] = {{"velocity_rmse", err.velocity_rmse},
                                         {"direction_rmse", err.direction_rmse},
+                                        {"seds_direction_rmse", err.seds_direction_rmse},
+                                        {"speed_rmse", err.speed_rmse},
                                         {"mean_path_distance", err.mean_path_distance},
                                         {"max_path_distance", err.max_path_distance}};
     ds::write_hitting_model(o->out, model);
@@ -117,6 +119,8 @@ void add_fit(CLI::App& ds) {
                      {"samples", rep.samples_used},
                      {"velocity_rmse", err.velocity_rmse},
                      {"direction_rmse", err.direction_rmse},
+                     {"seds_direction_rmse", err.seds_direction_rmse},
+                     {"speed_rmse", err.speed_rmse},
                      {"mean_path_distance", err.mean_path_distance},
                      {"max_path_distance", err.max_path_distance},
                      {"demos_reached", err.all_reached},
@@ -131,10 +135,11 @@ void add_fit(CLI::App& ds) {
     fmt::print("  objective     {:.6g} -> {:.6g}\n", rep.seds.initial_objective, rep.seds.final_objective);
     fmt::print("  stability     max eigenvalue of A_k + A_k^T = {:.6g} 1/s\n", model.max_eigenvalue());
     fmt::print("  v(x*)         {:.4f} m/s\n", model.default_speed());
-    fmt::print("  reproduction  velocity RMSE {:.4f} m/s, direction RMSE {:.2f} deg, path distance mean {:.4f} m, max {:.4f} m, "
-               "{}/{} demo starts reach the ball\n",
-               err.velocity_rmse, err.direction_rmse * 180.0 / std::numbers::pi, err.mean_path_distance, err.max_path_distance,
-               err.all_reached, demos.size());
+    fmt::print("  reproduction  velocity RMSE {:.4f} m/s (speed {:.4f} m/s), direction RMSE {:.2f} deg (bare SEDS {:.2f} deg)\n",
+               err.velocity_rmse, err.speed_rmse, err.direction_rmse * 180.0 / std::numbers::pi,
+               err.seds_direction_rmse * 180.0 / std::numbers::pi);
+    fmt::print("                rollouts from the demo starts: path distance mean {:.4f} m, max {:.4f} m, {}/{} reach the ball\n",
+               err.mean_path_distance, err.max_path_distance, err.all_reached, demos.size());
   });
 }
 

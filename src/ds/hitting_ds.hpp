@@ -116,8 +116,10 @@ std::string format_rollout(const RolloutResult& result);
 
 /// How well the default DS (theta = 0, v = v(x*)) reproduces the demonstrations.
 struct ReproductionError {
-  double velocity_rmse = 0.0;       ///< [m/s] |xdot_DS(x_n) - xdot_n| over all samples faster than 5% of v(x*)
+  double velocity_rmse = 0.0;       ///< [m/s] |xdot_DS(x_n) - xdot_n| over samples faster than 5% of v(x*), > 2 cm from x*
   double direction_rmse = 0.0;      ///< [rad] angle between E(x_n) and xdot_n over the same samples
+  double seds_direction_rmse = 0.0; ///< [rad] the same for the bare SEDS field f (no guidance blend)
+  double speed_rmse = 0.0;          ///< [m/s] | |xdot_DS(x_n)| - |xdot_n| | over the same samples
   double mean_path_distance = 0.0;  ///< [m] mean over samples of the distance to the rollout from the demo start
   double max_path_distance = 0.0;   ///< [m] the largest such distance
   int all_reached = 0;              ///< rollouts from the demo starts that reached the ball
