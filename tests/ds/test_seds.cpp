@@ -1,6 +1,7 @@
 #include "ds/seds.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
@@ -82,7 +83,9 @@ TEST_P(SedsGradient, AnalyticGradientMatchesFiniteDifferences) {
     worst = std::max(worst, err);
     EXPECT_LT(err, 1e-5) << "parameter " << i << " analytic " << g[i] << " fd " << fd;
   }
-  RecordProperty("worst_relative_gradient_error", std::to_string(worst));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3e", worst);
+  RecordProperty("worst_relative_gradient_error", buf);
 }
 
 INSTANTIATE_TEST_SUITE_P(Objectives, SedsGradient, ::testing::Values(SedsObjective::kLikelihood, SedsObjective::kMse));
