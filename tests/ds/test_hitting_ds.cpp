@@ -343,6 +343,46 @@ TEST(HittingModelFit, SameSeedSameBitsAndBadDemonstrationsAreErrors) {
   EXPECT_THROW(fit_hitting_model(bad, opt), InputError);
 }
 
+TEST(HittingModelFit, FitOnTheShippedDemonstrationsSatisfiesTheConstraints) {
+  const auto demos = read_demonstrations(data_dir() / "demos" / "default.csv");
+  for (const SedsObjective obj : {SedsObjective::kLikelihood, SedsObjective::kMse}) {
+    HittingFitOptions opt;
+    opt.seds.gaussians = 3;
+    opt.seds.objective = obj;
+    HittingFitReport rep;
+    const HittingModel m = fit_hitting_model(demos, opt, &rep);
+    EXPECT_LE(m.max_eigenvalue(), -1e-4) << to_string(obj);
+    EXPECT_LT(rep.seds.final_objective, rep.seds.initial_objective) << to_string(obj);
+    for (const auto& c : rep.seds.components) EXPECT_LE(stability_eigenvalue(c.a), -1e-4);
+    const ReproductionError e = reproduction_error(m, demos);
+    EXPECT_EQ(e.all_reached, static_cast<int>(demos.size()));
+    EXPECT_LT(e.mean_path_distance, 0.02) << to_string(obj);
+  }
+}
+
+TEST(HittingModelFit, FewAndNoisyDemonstrationsStillGiveAStableModelThatHitsAlongPsi0) {
+  for (const auto& [count, noise] : std::vector<std::pair<int, double>>{{1, 1.0}, {2, 10.0}, {5, 10.0}}) {
+    DemoGeneratorConfig cfg;
+    cfg.count = count;
+    cfg.position_noise *= noise;
+    cfg.velocity_noise *= noise;
+    Rng rng(500 + static_cast<std::uint64_t>(count));
+    HittingFitOptions opt;
+    opt.seds.gaussians = 2;
+    opt.seds.max_evaluations = 200;
+    const HittingModel m = fit_hitting_model(generate_demonstrations(cfg, rng), opt);
+    EXPECT_LE(m.max_eigenvalue(), -1e-4);
+    for (double theta : {-0.4, 0.0, 0.4})
+      for (const Vec3& s : {Vec3(-0.3, 0.0, 0.1), Vec3(-0.4, 0.1, 0.15)}) {
+        HittingCommand c{theta, 1.0, Modulator::kSine, m.x_star() + rotation_about_z(theta) * s};
+        const RolloutResult r = rollout(m, c);
+        ASSERT_TRUE(r.reached) << count << " demos: " << r.stop_reason;
+        EXPECT_LT(angle_error(r.velocity, theta, m), 1.0 * kDeg) << count << " demos, noise x" << noise;
+        EXPECT_NEAR(r.velocity.norm(), 1.0, 0.01);
+      }
+  }
+}
+
 TEST(HittingDs, BadCommandsAreClearErrors) {
   const HittingModel& m = shipped_model();
   HittingDsData d(m);
