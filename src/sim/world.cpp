@@ -24,8 +24,8 @@ constexpr double kMagic = 7.2426e6;  // marks an mjData that belongs to a minigo
 
 // Collision groups: static geoms only have a contype, so they never collide with each other
 // (mocap cup segments would otherwise collide with each other and the ground); the ball has
-// every static group in its conaffinity. Bit 4 is left for the arm's club head.
-constexpr int kLaneGroup = 1, kCupGroup = 2, kNoAffinity = 0;
+// every static group in its conaffinity, and the arm's club head (contype 4, see src/robot).
+constexpr int kLaneGroup = 1, kCupGroup = 2, kClubGroup = 4, kNoAffinity = 0;
 
 // Removes ball-ground contacts while the ball's centre is over the hole opening: the cup below
 // then catches the ball. Otherwise MuJoCo's default contype/conaffinity rule, which a user filter
@@ -131,7 +131,7 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
     </body>
 )",
                    f.tee[0], f.tee[1], f.height(f.tee[0], f.tee[1]) + f.ball.radius, f.ball.radius,
-                   f.ball.mass, kLaneGroup | kCupGroup, kLaneGroup | kCupGroup, f.hole.position[0],
+                   f.ball.mass, kLaneGroup | kCupGroup, kLaneGroup | kCupGroup | kClubGroup, f.hole.position[0],
                    f.hole.position[1], z_min - 1.0, hole_r + seg_t, kCupGroup, kNoAffinity);
   for (int i = 0; i < o.hole_segments; ++i)
     x += fmt::format(R"(    <body name="hole_wall_{}" mocap="true" pos="0 0 {}">
