@@ -178,6 +178,8 @@ void EmOptions::validate() const {
     throw InputError(fmt::format("EM options: reg_covar: expected a number >= 0, got {}", reg_covar));
   if (kmeans_restarts < 1)
     throw InputError(fmt::format("EM options: kmeans_restarts: expected >= 1, got {}", kmeans_restarts));
+  if (init_restarts < 1)
+    throw InputError(fmt::format("EM options: init_restarts: expected >= 1, got {}", init_restarts));
 }
 
 KMeansResult kmeans(const Eigen::MatrixXd& data, int num_clusters, mg::Rng& rng, int restarts, int max_iterations) {
@@ -191,9 +193,10 @@ KMeansResult kmeans(const Eigen::MatrixXd& data, int num_clusters, mg::Rng& rng,
   return best;
 }
 
-EmResult fit_gmm(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, const EmOptions& options) {
-  options.validate();
-  require_data(data, num_components, "GMM fit");
+namespace {
+
+// One initialisation (k-means) followed by EM.
+EmResult run_em(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, const EmOptions& options) {
   const Eigen::Index n = data.rows();
   const Eigen::Index d = data.cols();
   const KMeansResult km = kmeans(data, num_components, rng, options.kmeans_restarts);
@@ -236,9 +239,23 @@ EmResult fit_gmm(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, 
   result.log_likelihood = gmm_log_likelihood(gmm, data);
   if (result.log_likelihood_trace.empty() || result.log_likelihood_trace.back() != result.log_likelihood)
     result.log_likelihood_trace.push_back(result.log_likelihood);
-  if (!std::isfinite(result.log_likelihood))
-    throw NumericalError(fmt::format("GMM fit: expected a finite log-likelihood, got {}", result.log_likelihood));
   return result;
+}
+
+}  // namespace
+
+EmResult fit_gmm(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, const EmOptions& options) {
+  options.validate();
+  require_data(data, num_components, "GMM fit");
+  EmResult best;
+  best.log_likelihood = -std::numeric_limits<double>::infinity();
+  for (int r = 0; r < options.init_restarts; ++r) {
+    EmResult res = run_em(data, num_components, rng, options);
+    if (r == 0 || res.log_likelihood > best.log_likelihood) best = std::move(res);
+  }
+  if (!std::isfinite(best.log_likelihood))
+    throw NumericalError(fmt::format("GMM fit: expected a finite log-likelihood, got {}", best.log_likelihood));
+  return best;
 }
 
 double gmm_log_likelihood(const Gmm& gmm, const Eigen::MatrixXd& data) {

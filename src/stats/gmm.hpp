@@ -30,7 +30,8 @@ struct EmOptions {
   int max_iterations = 300;  ///< EM iterations at most (>= 1)
   double tolerance = 1e-8;   ///< stop when |LL change| <= tolerance * max(1, |LL|) (> 0)
   double reg_covar = 1e-6;   ///< added to every covariance diagonal, in data units^2 (>= 0)
-  int kmeans_restarts = 5;   ///< k-means++ seedings tried; the lowest inertia wins (>= 1)
+  int kmeans_restarts = 5;   ///< k-means++ seedings tried per initialisation; the lowest inertia wins (>= 1)
+  int init_restarts = 1;     ///< independent initialisations, each followed by EM; the highest final LL wins (>= 1)
   void validate() const;
 };
 

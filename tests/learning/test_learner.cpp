@@ -24,21 +24,23 @@ TrainOptions options(Method m, int k = 0) {
 }
 
 TEST(LearningModel, FlatFieldLawIsRecoveredFromFewNoisyPoints) {
+  // theta = atan2(xi_y, xi_x) and a sqrt-of-distance speed from 5-30 noisy examples. The bounds
+  // are fractions of each output's variance over the validation set (1 - R^2): GPR fits the
+  // smooth law closely, GMR with 2 Gaussians is a coarser piecewise-linear approximation.
   const Dataset val = flat_field(300, 999, 0.0);
+  Eigen::Vector2d variance;
+  for (int o = 0; o < 2; ++o) variance(o) = (val.outputs.col(o).array() - val.outputs.col(o).mean()).square().mean();
   for (int n : {5, 15, 30}) {
     const Dataset train_set = flat_field(n, 100 + n, 0.01);
-    double prev_gpr = 1e9;
     for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
       const Model model = train(train_set, options(m, m == Method::kGpr ? 0 : 2));
       const std::vector<Score> s = score(model, val);
-      // Angle variance over the validation set is ~0.12 rad^2: a learner must do far better.
-      const double bound = n >= 15 ? (m == Method::kGpr ? 2e-3 : 2e-2) : 6e-2;
-      EXPECT_LT(s[0].mse, bound) << method_name(m) << " n=" << n;
-      EXPECT_LT(s[1].mse, bound) << method_name(m) << " n=" << n;
-      EXPECT_TRUE(std::isfinite(s[0].nlpd) && std::isfinite(s[1].nlpd));
-      if (m == Method::kGpr) prev_gpr = s[0].mse;
+      const double fraction = n == 5 ? 0.5 : m == Method::kGpr ? 0.02 : 0.25;
+      for (int o = 0; o < 2; ++o) {
+        EXPECT_LT(s[o].mse, fraction * variance(o)) << method_name(m) << " n=" << n << " output " << o;
+        EXPECT_TRUE(std::isfinite(s[o].nlpd));
+      }
     }
-    (void)prev_gpr;
   }
 }
 

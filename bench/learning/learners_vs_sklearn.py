@@ -1,0 +1,200 @@
+#!/usr/bin/python3
+"""Our GPR / GMR / joint GMR (the `minigolf` binary) against scikit-learn on the same data.
+
+Synthetic, seeded "sloped field" data: xi = hole - ball in [0.5, 3] x [-1.2, 1.2] m, the hole is
+uphill towards +y, so the angle bends uphill with distance and the speed grows with distance and
+with the climb; Gaussian noise on both outputs (0.02 rad, 0.03 m/s), like a teacher's examples.
+
+scikit-learn side (Debian's python3-sklearn; run with /usr/bin/python3):
+  GPR: GaussianProcessRegressor(C * RBF(ARD) + WhiteKernel, normalize_y=True,
+       n_restarts_optimizer = restarts - 1), one per output, as in the GPML/sklearn docs.
+  GMR: GaussianMixture(K, full covariances, defaults) on (xi, output) or (xi, angle, speed), then
+       the same Gaussian conditioning (sklearn has no GMR), predictive variance by the law of total
+       covariance.
+Ours: trained by `bench_learning_fit` (the same mg::learning::train as `minigolf train`, same
+defaults) which reports the in-process fit time, like sklearn's `fit()` time; predictions by
+`minigolf predict` on the model file it wrote. With --ours-args the model is trained by
+`minigolf train ARGS` instead and the time is that of the whole process (start-up included).
+
+Usage: /usr/bin/python3 bench/learning/learners_vs_sklearn.py [--binary build-learning/src/cli/minigolf]
+       [--sizes 10,20,30,50] [--seeds 5] [--restarts 10]
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import warnings
+
+import numpy as np
+from sklearn.exceptions import ConvergenceWarning
+from sklearn.gaussian_process import GaussianProcessRegressor
+from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
+from sklearn.mixture import GaussianMixture
+
+NOISE = (0.02, 0.03)
+
+
+def sloped_field(n, rng):
+    x = rng.uniform(0.5, 3.0, n)
+    y = rng.uniform(-1.2, 1.2, n)
+    d = np.hypot(x, y)
+    angle = np.arctan2(y, x) + 0.25 * np.tanh(d) * np.cos(np.arctan2(y, x)) + 0.1 * np.sin(2.0 * y)
+    speed = np.sqrt(1.2 * d + 0.25) + 0.15 * y + 0.05 * np.sin(3.0 * x)
+    angle = angle + rng.normal(0.0, NOISE[0], n)
+    speed = speed + rng.normal(0.0, NOISE[1], n)
+    return np.column_stack([x, y]), np.column_stack([angle, speed])
+
+
+def write_csv(path, xi, out):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["xi_x", "xi_y", "angle", "speed"])
+        for a, b in zip(xi, out):
+            w.writerow([repr(float(v)) for v in (*a, *b)])
+
+
+def scores(y, mean, std):
+    var = np.maximum(std, 1e-12) ** 2
+    mse = np.mean((y - mean) ** 2, axis=0)
+    nlpd = np.mean(0.5 * np.log(2 * np.pi * var) + 0.5 * (y - mean) ** 2 / var, axis=0)
+    return mse, nlpd
+
+
+def sk_gpr(xi, out, xv, restarts, seed):
+    t0 = time.perf_counter()
+    models = []
+    for o in range(out.shape[1]):
+        kernel = ConstantKernel(1.0, (1e-4, 1e4)) * RBF([1.0, 1.0], (1e-2, 1e2)) + WhiteKernel(1e-2, (1e-8, 1e1))
+        m = GaussianProcessRegressor(kernel, normalize_y=True, n_restarts_optimizer=restarts - 1, random_state=seed)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ConvergenceWarning)
+            m.fit(xi, out[:, o])
+        models.append(m)
+    fit = time.perf_counter() - t0
+    means, stds = zip(*(m.predict(xv, return_std=True) for m in models))
+    return np.column_stack(means), np.column_stack(stds), fit
+
+
+def condition(gm, x, n_in):
+    """GMR on a fitted sklearn GaussianMixture: E and Cov of the last dims given the first n_in."""
+    k = gm.n_components
+    n = x.shape[0]
+    n_out = gm.means_.shape[1] - n_in
+    logw = np.zeros((n, k))
+    cm = np.zeros((n, k, n_out))
+    cc = np.zeros((k, n_out, n_out))
+    for j in range(k):
+        mu, s = gm.means_[j], gm.covariances_[j]
+        sii, soi, soo = s[:n_in, :n_in], s[n_in:, :n_in], s[n_in:, n_in:]
+        a = np.linalg.solve(sii, soi.T).T
+        diff = x - mu[:n_in]
+        maha = np.sum(diff * np.linalg.solve(sii, diff.T).T, axis=1)
+        logw[:, j] = np.log(gm.weights_[j]) - 0.5 * (maha + np.linalg.slogdet(2 * np.pi * sii)[1])
+        cm[:, j, :] = mu[n_in:] + diff @ a.T
+        cc[j] = soo - a @ soi.T
+    logw -= logw.max(axis=1, keepdims=True)
+    h = np.exp(logw)
+    h /= h.sum(axis=1, keepdims=True)
+    mean = np.einsum("nk,nko->no", h, cm)
+    d = cm - mean[:, None, :]
+    var = np.einsum("nk,ko->no", h, np.stack([np.diag(c) for c in cc])) + np.einsum("nk,nko->no", h, d * d)
+    return mean, np.sqrt(np.maximum(var, 0.0))
+
+
+def sk_gmr(xi, out, xv, k, seed, joint):
+    t0 = time.perf_counter()
+    if joint:
+        gms = [GaussianMixture(k, covariance_type="full", random_state=seed).fit(np.column_stack([xi, out]))]
+    else:
+        gms = [GaussianMixture(k, covariance_type="full", random_state=seed).fit(np.column_stack([xi, out[:, o]]))
+               for o in range(out.shape[1])]
+    fit = time.perf_counter() - t0
+    if joint:
+        return (*condition(gms[0], xv, 2), fit)
+    parts = [condition(g, xv, 2) for g in gms]
+    return np.column_stack([p[0][:, 0] for p in parts]), np.column_stack([p[1][:, 0] for p in parts]), fit
+
+
+def ours(binary, fit_binary, method, train_csv, query_csv, model, k, restarts, seed, extra=()):
+    kk = str(k) if method != "gpr" else "0"
+    if extra:  # options only the CLI knows: train with it, time the whole process
+        args = [binary, "train", "--method", method, train_csv, "-o", model, "--seed", str(seed), "--restarts",
+                str(restarts), "--gaussians", kk, *extra]
+        t0 = time.perf_counter()
+        subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
+        fit = time.perf_counter() - t0
+    else:
+        res = subprocess.run([fit_binary, train_csv, method, kk, str(restarts), str(seed), model], check=True,
+                             capture_output=True, text=True)
+        fit = json.loads(res.stdout)["fit_seconds"]
+    res = subprocess.run([binary, "predict", model, query_csv], check=True, capture_output=True, text=True)
+    rows = list(csv.reader(res.stdout.splitlines()))
+    hdr = rows[0]
+    data = np.array([[float(v) for v in r] for r in rows[1:]])
+    mean = data[:, [hdr.index("angle_mean"), hdr.index("speed_mean")]]
+    std = data[:, [hdr.index("angle_std"), hdr.index("speed_std")]]
+    return mean, std, fit
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--binary", default=os.path.join(here, "..", "..", "build-learning", "src", "cli", "minigolf"))
+    ap.add_argument("--fit-binary", default=os.path.join(here, "..", "..", "build-learning", "bench", "learning",
+                                                         "bench_learning_fit"))
+    ap.add_argument("--sizes", default="10,20,30,50")
+    ap.add_argument("--seeds", type=int, default=5)
+    ap.add_argument("--restarts", type=int, default=10)
+    ap.add_argument("--validation", type=int, default=300)
+    ap.add_argument("--ours-args", default="", help="extra options for `minigolf train`, e.g. '--reg-covar 1e-2'")
+    ap.add_argument("--only", default="", help="comma list of methods to run: GPR,GMR,joint GMR")
+    a = ap.parse_args()
+    sizes = [int(s) for s in a.sizes.split(",")]
+
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for n in sizes:
+            k = 2 if n <= 10 else 3
+            acc = {}
+            for s in range(a.seeds):
+                rng = np.random.default_rng(1000 * n + s)
+                xi, out = sloped_field(n, rng)
+                xv, ov = sloped_field(a.validation, rng)
+                tr, va, model = (os.path.join(tmp, f) for f in ("train.csv", "val.csv", "model.json"))
+                write_csv(tr, xi, out)
+                write_csv(va, xv, ov)
+                extra = a.ours_args.split()
+                jobs = {
+                    ("GPR", "ours"): lambda: ours(a.binary, a.fit_binary, "gpr", tr, va, model, k, a.restarts, s + 1, extra),
+                    ("GPR", "sklearn"): lambda: sk_gpr(xi, out, xv, a.restarts, s),
+                    ("GMR", "ours"): lambda: ours(a.binary, a.fit_binary, "gmr", tr, va, model, k, a.restarts, s + 1, extra),
+                    ("GMR", "sklearn"): lambda: sk_gmr(xi, out, xv, k, s, joint=False),
+                    ("joint GMR", "ours"): lambda: ours(a.binary, a.fit_binary, "joint-gmr", tr, va, model, k, a.restarts, s + 1, extra),
+                    ("joint GMR", "sklearn"): lambda: sk_gmr(xi, out, xv, k, s, joint=True),
+                }
+                only = [m for m in a.only.split(",") if m]
+                runs = {key: job() for key, job in jobs.items() if not only or key[0] in only}
+                for key, (mean, std, fit) in runs.items():
+                    mse, nlpd = scores(ov, mean, std)
+                    acc.setdefault(key, []).append((*mse, *nlpd, fit))
+            for (method, lib), vals in acc.items():
+                v = np.mean(np.array(vals), axis=0)
+                rows.append((n, k, method, lib, *v))
+
+    print(f"sloped field, {a.seeds} seeds per size, {a.validation} noisy validation points "
+          f"(noise floor: angle MSE {NOISE[0]**2:.1e}, speed MSE {NOISE[1]**2:.1e}); "
+          f"GPR starts {a.restarts}; fit times in-process, wall clock\n")
+    print("| N | K | method | library | MSE angle [rad^2] | MSE speed [(m/s)^2] | NLPD angle | NLPD speed | fit time [ms] |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for n, k, method, lib, ma, ms, na, ns, fit in rows:
+        kk = "-" if method == "GPR" else str(k)
+        print(f"| {n} | {kk} | {method} | {lib} | {ma:.3e} | {ms:.3e} | {na:.3f} | {ns:.3f} | {fit*1e3:.1f} |")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
