@@ -3,6 +3,7 @@
 
 #include "robot/dynamics.hpp"
 #include "robot/ik.hpp"
+#include "robot/wam_model.hpp"
 
 namespace {
 
@@ -56,11 +57,12 @@ void BM_VelocityIk(benchmark::State& state) {
 }
 BENCHMARK(BM_VelocityIk);
 
-// One full tick of face tracking: DH pose + Jacobian, error, velocity IK.
+// One full tick of face tracking (DH pose + Jacobian, error, velocity IK) near the rest posture.
 void BM_TrackFace(benchmark::State& state) {
-  const Vector7 q = sample_q();
+  const Vector7 q(mg::robot::kDefaultRestPosture.data());
   mg::robot::FaceTarget target;
-  target.position = mg::robot::dh_club_pose(arm(), q).translation() + Eigen::Vector3d(0.01, 0.0, 0.0);
+  target.position = mg::robot::dh_club_pose(arm(), q).translation() + Eigen::Vector3d(0.001, 0.0, 0.0);
+  target.velocity << 0.5, 0.0, 0.0, 0.0, 0.0, 0.0;
   const mg::robot::IkOptions options;
   Vector7 qd;
   for (auto _ : state) {
@@ -70,5 +72,20 @@ void BM_TrackFace(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_TrackFace);
+
+// Worst case: a far target saturates joints, so the IK re-solves once per locked joint.
+void BM_TrackFaceSaturated(benchmark::State& state) {
+  const Vector7 q = sample_q();
+  mg::robot::FaceTarget target;
+  target.position = mg::robot::dh_club_pose(arm(), q).translation() + Eigen::Vector3d(0.2, 0.0, 0.0);
+  const mg::robot::IkOptions options;
+  Vector7 qd;
+  for (auto _ : state) {
+    auto s = mg::robot::track_face(arm(), q, target, q, options, qd);
+    benchmark::DoNotOptimize(s);
+    benchmark::DoNotOptimize(qd);
+  }
+}
+BENCHMARK(BM_TrackFaceSaturated);
 
 }  // namespace

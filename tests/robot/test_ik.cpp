@@ -2,6 +2,7 @@
 #include <limits>
 
 #include <Eigen/SVD>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
@@ -66,9 +67,9 @@ TEST_F(WamIk, ReachesTheHittingRegionWithinOneMillimetreAndOneDegree) {
   EXPECT_EQ(targets, 135);
   // Solutions stay clear of the limits (the IK keeps a 0.05 rad margin; the mount gives more).
   EXPECT_GT(worst_margin, 0.1);
-  RecordProperty("worst_position_error_m", std::to_string(worst_pos));
-  RecordProperty("worst_angle_error_rad", std::to_string(worst_ang));
-  RecordProperty("worst_joint_margin_rad", std::to_string(worst_margin));
+  RecordProperty("worst_position_error_m", fmt::format("{:.3g}", worst_pos));
+  RecordProperty("worst_angle_error_rad", fmt::format("{:.3g}", worst_ang));
+  RecordProperty("worst_joint_margin_rad", fmt::format("{:.3g}", worst_margin));
 }
 
 TEST_F(WamIk, RestPostureHoldsTheFaceVerticalAtTheRegionCentre) {
@@ -144,7 +145,7 @@ TEST_F(WamIk, TrackFaceFollowsAMovingTarget) {
   const FaceCheck c = check_with_mujoco(q, t);
   EXPECT_LT(c.position_error, 2e-3);
   EXPECT_LT(c.normal_error, 1.0 * kDeg);
-  RecordProperty("worst_tracking_error_m", std::to_string(worst));
+  RecordProperty("worst_tracking_error_m", fmt::format("{:.3g}", worst));
 }
 
 // Random states and wild task velocities: the output never leaves the velocity bounds and never

@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "robot/kinematics.hpp"
@@ -50,7 +51,7 @@ TEST_F(WamFixture, MujocoLinkFramesEqualDhForwardKinematics) {
     worst = std::max(worst, max_abs_diff(flange_pose(*arm_, data_.get()), dh_flange_pose(*arm_, q)));
   }
   EXPECT_LT(worst, 1e-9);
-  RecordProperty("max_fk_difference", std::to_string(worst));
+  RecordProperty("max_fk_difference", fmt::format("{:.3g}", worst));
 }
 
 TEST_F(WamFixture, JacobianMatchesFiniteDifferencesAndDhJacobian) {
