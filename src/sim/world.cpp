@@ -141,7 +141,10 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
 )",
                      i, z_min - 1.0, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, -0.5 * f.hole.depth,
                      kCupGroup, kNoAffinity, damping_ratio_for_restitution(o.cup_restitution));
-  x += "  </worldbody>\n</mujoco>\n";
+  x += o.extra_worldbody_mjcf;
+  x += "  </worldbody>\n";
+  if (!o.extra_actuator_mjcf.empty()) x += "  <actuator>\n" + o.extra_actuator_mjcf + "  </actuator>\n";
+  x += "</mujoco>\n";
   return x;
 }
 

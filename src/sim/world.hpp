@@ -47,6 +47,10 @@ struct WorldOptions {
   /// (measured: 11 mm at 2 m/s with 0.002 s, under 0.5 mm with 0.02 s); softer ones sink it
   /// in. See README "Physics".
   double ground_time_constant = 0.02;
+  /// MJCF inserted into the world's `<worldbody>` and `<actuator>` (the arm, from src/robot; sim
+  /// does not depend on robot). Angles in radians. Geoms that should hit the ball use contype 4.
+  std::string extra_worldbody_mjcf;
+  std::string extra_actuator_mjcf;
   void validate() const;
 };
 
