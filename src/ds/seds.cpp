@@ -436,6 +436,18 @@ void nlopt_constraints(unsigned m, double* result, unsigned n, const double* x, 
   }
 }
 
+std::string nlopt_status_name(nlopt::result r) {
+  switch (r) {
+    case nlopt::SUCCESS: return "success";
+    case nlopt::STOPVAL_REACHED: return "stopval reached";
+    case nlopt::FTOL_REACHED: return "ftol reached";
+    case nlopt::XTOL_REACHED: return "xtol reached";
+    case nlopt::MAXEVAL_REACHED: return "maxeval reached";
+    case nlopt::MAXTIME_REACHED: return "maxtime reached";
+    default: return fmt::format("nlopt result {}", static_cast<int>(r));
+  }
+}
+
 }  // namespace
 
 SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
@@ -461,7 +473,7 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
   double fx = 0.0;
   try {
     const auto status = opt.optimize(x, fx);
-    result.optimizer_status = fmt::format("nlopt result {}", static_cast<int>(status));
+    result.optimizer_status = nlopt_status_name(status);
   } catch (const std::exception& e) {
     // Round-off and similar stops: keep the best feasible point seen.
     result.optimizer_status = fmt::format("nlopt stopped early ({})", e.what());
@@ -469,8 +481,13 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
   result.evaluations = ctx.evaluations;
   const bool final_ok = max_constraint(x, options.gaussians, b) <= -options.margin && std::isfinite(fx);
   if (!final_ok || (ctx.best_x.size() == x.size() && ctx.best_value < fx)) {
-    if (ctx.best_x.empty()) x.assign(p0.data(), p0.data() + p0.size());  // the projected start is feasible
-    else x = ctx.best_x;
+    if (ctx.best_x.empty()) {
+      x.assign(p0.data(), p0.data() + p0.size());  // the projected start is feasible
+      result.optimizer_status += "; kept the feasible start";
+    } else {
+      x = ctx.best_x;
+      result.optimizer_status += "; kept the best feasible point";
+    }
   }
   const Eigen::Map<const Eigen::VectorXd> p(x.data(), static_cast<Eigen::Index>(x.size()));
   result.final_objective = seds_objective(p, data, options.objective, options.covariance_floor, init, nullptr);
