@@ -249,6 +249,20 @@ TEST(HittingDs, EvaluationAllocatesNothing) {
   EXPECT_TRUE(acc.allFinite());
 }
 
+TEST(HittingDs, FiniteAndAttractingFarFromAllComponents) {
+  const HittingModel& m = shipped_model();
+  HittingDsData data(m);
+  data.set_command(m, {0.2, 1.5, Modulator::kConstant, m.x_star() + Vec3(-0.3, 0, 0.1)});
+  for (double r : {10.0, 1e3, 1e6})
+    for (const Vec3& dir : {Vec3(1, 0, 0), Vec3(-1, 1, 0).normalized(), Vec3(0, 0, -1), Vec3(0.3, -0.4, 0.866)}) {
+      const Vec3 v = hitting_ds_velocity(m, data, m.x_star() + r * dir);
+      ASSERT_TRUE(v.allFinite()) << r;
+      EXPECT_LT(v.normalized().dot(dir), 0.0) << r << " " << dir.transpose();
+      // Bounded speed: the strength factor is clamped, so nothing explodes far away.
+      EXPECT_LE(v.norm(), 1.5 / m.default_speed() * m.settings().max_strength_fraction * m.default_speed() + 1e-9);
+    }
+}
+
 TEST(HittingDs, BallReachedOnlyPastTheHittingPlaneNearTheBall) {
   const HittingModel& m = shipped_model();
   HittingDsData data(m);
