@@ -127,25 +127,40 @@ IkResult solve_ik(const ArmModel& arm, const FaceTarget& target, const Vector7& 
                                    arm.position_upper()(i), start(i)));
   FaceTarget static_target = target;
   static_target.velocity.setZero();
+  const Vector7 clamped_posture = posture.cwiseMax(arm.position_lower()).cwiseMin(arm.position_upper());
 
-  IkResult result;
-  result.q = start;
-  Vector7 qd;
-  Vector6 e;
-  for (int it = 0; it < options.max_iterations; ++it) {
-    (void)track_face(arm, result.q, static_target, posture, options.step, qd, &e);
-    result.iterations = it;
-    result.position_error = e.head<3>().norm();
-    result.orientation_error = e.tail<3>().norm();
-    if (result.position_error < options.position_tolerance && result.orientation_error < options.orientation_tolerance) {
-      result.converged = true;
-      return result;
+  auto descend = [&](const Vector7& from, int budget) {
+    IkResult r;
+    r.q = from;
+    Vector7 qd;
+    Vector6 e;
+    for (int it = 0; it < budget; ++it) {
+      (void)track_face(arm, r.q, static_target, posture, options.step, qd, &e);
+      r.iterations = it;
+      r.position_error = e.head<3>().norm();
+      r.orientation_error = e.tail<3>().norm();
+      if (r.position_error < options.position_tolerance && r.orientation_error < options.orientation_tolerance) {
+        r.converged = true;
+        return r;
+      }
+      r.q += options.step.dt * qd;
+      r.q = r.q.cwiseMax(arm.position_lower()).cwiseMin(arm.position_upper());
     }
-    result.q += options.step.dt * qd;
-    result.q = result.q.cwiseMax(arm.position_lower()).cwiseMin(arm.position_upper());
-  }
-  result.iterations = options.max_iterations;
-  return result;
+    r.iterations = budget;
+    return r;
+  };
+  // A start far from the posture can stall against a joint limit; then restart once from the
+  // posture with the remaining budget and keep the better outcome.
+  const int first_budget = options.max_iterations / 2 > 0 ? options.max_iterations / 2 : options.max_iterations;
+  IkResult first = descend(start, (start - clamped_posture).isZero() ? options.max_iterations : first_budget);
+  if (first.converged || (start - clamped_posture).isZero() || options.max_iterations - first.iterations < 1)
+    return first;
+  IkResult second = descend(clamped_posture, options.max_iterations - first.iterations);
+  second.iterations += first.iterations;
+  if (second.converged || second.position_error + second.orientation_error < first.position_error + first.orientation_error)
+    return second;
+  first.iterations = second.iterations;
+  return first;
 }
 
 }  // namespace mg::robot

@@ -74,7 +74,8 @@ struct IkResult {
 };
 
 /// Position-level IK (not real-time): integrates track_face from `start` until the face pose is
-/// within tolerance. `posture` [rad] (7) resolves the redundancy. Throws mg::InputError on
+/// within tolerance. `posture` [rad] (7) resolves the redundancy; if the descent from `start`
+/// stalls (half the iteration budget), it restarts once from `posture`. Throws mg::InputError on
 /// non-finite input or a start outside the joint limits.
 IkResult solve_ik(const ArmModel& arm, const FaceTarget& target, const Vector7& start, const Vector7& posture,
                   const IkSolveOptions& options = {});

@@ -72,6 +72,29 @@ TEST_F(WamIk, ReachesTheHittingRegionWithinOneMillimetreAndOneDegree) {
   RecordProperty("worst_joint_margin_rad", fmt::format("{:.3g}", worst_margin));
 }
 
+// Random targets in the region, each IK started from the previous solution (as the controller
+// would): all converge, within limits.
+TEST_F(WamIk, ReachesRandomTargetsFromChainedStarts) {
+  Rng rng(41);
+  std::uniform_real_distribution<double> ux(-0.45, 0.1), uy(-0.15, 0.15), uz(0.02, 0.30), uh(-0.5, 0.5);
+  Vector7 q = rest_posture();
+  int failures = 0;
+  for (int k = 0; k < 300; ++k) {
+    FaceTarget t;
+    t.position = {ux(rng), uy(rng), uz(rng)};
+    t.heading = uh(rng);
+    const IkResult r = solve_ik(*arm_, t, q, rest_posture());
+    if (!r.converged) {
+      ++failures;
+      continue;
+    }
+    EXPECT_TRUE(within_limits(r.q));
+    EXPECT_LT(check_with_mujoco(r.q, t).position_error, 1e-3);
+    q = r.q;
+  }
+  EXPECT_EQ(failures, 0);
+}
+
 TEST_F(WamIk, RestPostureHoldsTheFaceVerticalAtTheRegionCentre) {
   FaceTarget t;
   t.position = {-0.175, 0.0, 0.16};
