@@ -61,7 +61,8 @@ BENCHMARK(BM_VelocityIk);
 void BM_TrackFace(benchmark::State& state) {
   const Vector7 q(mg::robot::kDefaultRestPosture.data());
   mg::robot::FaceTarget target;
-  target.position = mg::robot::dh_club_pose(arm(), q).translation() + Eigen::Vector3d(0.001, 0.0, 0.0);
+  target.position =
+      mg::robot::dh_club_pose(arm(), q).translation() + Eigen::Vector3d(0.001, 0.0, 0.0);
   target.velocity << 0.5, 0.0, 0.0, 0.0, 0.0, 0.0;
   const mg::robot::IkOptions options;
   Vector7 qd;
@@ -77,7 +78,8 @@ BENCHMARK(BM_TrackFace);
 void BM_TrackFaceSaturated(benchmark::State& state) {
   const Vector7 q = sample_q();
   mg::robot::FaceTarget target;
-  target.position = mg::robot::dh_club_pose(arm(), q).translation() + Eigen::Vector3d(0.2, 0.0, 0.0);
+  target.position =
+      mg::robot::dh_club_pose(arm(), q).translation() + Eigen::Vector3d(0.2, 0.0, 0.0);
   const mg::robot::IkOptions options;
   Vector7 qd;
   for (auto _ : state) {

@@ -1,9 +1,9 @@
 #include "robot/arm_model.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 
@@ -14,7 +14,8 @@ Vector7 from_array(const std::array<double, kNumJoints>& a) { return Vector7(a.d
 
 int require_id(const mjModel* m, mjtObj type, const std::string& name) {
   const int id = mj_name2id(m, type, name.c_str());
-  if (id < 0) throw InputError(fmt::format("WAM model: expected an element named '{}', found none", name));
+  if (id < 0)
+    throw InputError(fmt::format("WAM model: expected an element named '{}', found none", name));
   return id;
 }
 
@@ -31,7 +32,8 @@ ArmModel::ArmModel(const WamMount& mount) : mount_(mount) {
   armature_ = from_array(kArmature);
   damping_ = from_array(kDamping);
   inertials_ = kLinkInertials;
-  inertials_[kNumJoints - 1] = combine_inertials(kLinkInertials[kNumJoints - 1], club_inertial(mount_.club));
+  inertials_[kNumJoints - 1] =
+      combine_inertials(kLinkInertials[kNumJoints - 1], club_inertial(mount_.club));
   gravity_ = world_from_shoulder_.linear().transpose() * Eigen::Vector3d(0.0, 0.0, -9.81);
 }
 
@@ -40,7 +42,8 @@ ArmModel::ArmModel(const mjModel* m, const WamMount& mount) : ArmModel(mount) {
   for (int i = 0; i < kNumJoints; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const int j = require_id(m, mjOBJ_JOINT, fmt::format("wam_j{}", i + 1));
-    if (m->jnt_type[j] != mjJNT_HINGE) throw InputError(fmt::format("WAM model: joint wam_j{} is not a hinge", i + 1));
+    if (m->jnt_type[j] != mjJNT_HINGE)
+      throw InputError(fmt::format("WAM model: joint wam_j{} is not a hinge", i + 1));
     qpos_adr_[k] = m->jnt_qposadr[j];
     dof_adr_[k] = m->jnt_dofadr[j];
     lower_(i) = m->jnt_range[2 * j];
@@ -52,7 +55,8 @@ ArmModel::ArmModel(const mjModel* m, const WamMount& mount) : ArmModel(mount) {
   }
   site_id_ = require_id(m, mjOBJ_SITE, "club_face");
   flange_body_ = require_id(m, mjOBJ_BODY, "wam_link7");
-  gravity_ = world_from_shoulder_.linear().transpose() * Eigen::Vector3d(m->opt.gravity[0], m->opt.gravity[1], m->opt.gravity[2]);
+  gravity_ = world_from_shoulder_.linear().transpose() *
+             Eigen::Vector3d(m->opt.gravity[0], m->opt.gravity[1], m->opt.gravity[2]);
 
   // The compiled link-1 frame at q = 0 must be world_T_0 * A_1(0): otherwise the mount passed
   // here is not the one the model was generated from.
@@ -68,7 +72,9 @@ ArmModel::ArmModel(const mjModel* m, const WamMount& mount) : ArmModel(mount) {
   const Eigen::Isometry3d expected = world_from_shoulder_ * dh_link_transform(1, 0.0);
   const double mismatch = (compiled.matrix() - expected.matrix()).cwiseAbs().maxCoeff();
   if (!(mismatch < 1e-9))
-    throw InputError(fmt::format("WAM model: the compiled base does not match the given mount (max difference {})", mismatch));
+    throw InputError(fmt::format(
+        "WAM model: the compiled base does not match the given mount (max difference {})",
+        mismatch));
 }
 
 Vector7 joint_positions(const ArmModel& arm, const mjData* d) {
@@ -125,7 +131,8 @@ Eigen::Isometry3d dh_club_pose(const ArmModel& arm, const Vector7& q) {
   return arm.shoulder_in_world() * dh_forward_kinematics(q) * arm.face_in_flange();
 }
 
-void dh_club_jacobian(const ArmModel& arm, const Vector7& q, Eigen::Isometry3d& pose, Matrix67& jacobian) {
+void dh_club_jacobian(const ArmModel& arm, const Vector7& q, Eigen::Isometry3d& pose,
+                      Matrix67& jacobian) {
   // Geometric Jacobian: column i = [z_{i-1} x (p_face - p_{i-1}); z_{i-1}], world frame.
   Eigen::Isometry3d t = arm.shoulder_in_world();
   std::array<Eigen::Vector3d, kNumJoints> axis, origin;

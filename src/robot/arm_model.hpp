@@ -1,9 +1,9 @@
 #pragma once
 /// The immutable arm description used by kinematics, dynamics and IK, and helpers that read
 /// the club pose and Jacobian out of a MuJoCo simulation.
-#include <array>
-
 #include <mujoco/mujoco.h>
+
+#include <array>
 
 #include "robot/kinematics.hpp"
 #include "robot/wam_model.hpp"
@@ -38,18 +38,24 @@ class ArmModel {
   /// 7_T_face: the club_face frame in the flange (DH frame 7).
   const Eigen::Isometry3d& face_in_flange() const { return flange_from_face_; }
 
-  int qpos_address(int joint) const { return qpos_adr_[static_cast<std::size_t>(joint)]; }  ///< joint 0..6
-  int dof_address(int joint) const { return dof_adr_[static_cast<std::size_t>(joint)]; }    ///< joint 0..6
-  int actuator_id(int joint) const { return actuator_id_[static_cast<std::size_t>(joint)]; }  ///< joint 0..6
+  int qpos_address(int joint) const {
+    return qpos_adr_[static_cast<std::size_t>(joint)];
+  }  ///< joint 0..6
+  int dof_address(int joint) const {
+    return dof_adr_[static_cast<std::size_t>(joint)];
+  }  ///< joint 0..6
+  int actuator_id(int joint) const {
+    return actuator_id_[static_cast<std::size_t>(joint)];
+  }  ///< joint 0..6
   int site_id() const { return site_id_; }
   int flange_body_id() const { return flange_body_; }
 
-  const Vector7& position_lower() const { return lower_; }     ///< [rad] (7)
-  const Vector7& position_upper() const { return upper_; }     ///< [rad] (7)
-  const Vector7& velocity_limit() const { return vel_limit_; } ///< [rad/s] (7)
-  const Vector7& torque_limit() const { return torque_limit_; } ///< [N m] (7)
-  const Vector7& armature() const { return armature_; }        ///< [kg m^2] (7)
-  const Vector7& damping() const { return damping_; }          ///< [N m s/rad] (7)
+  const Vector7& position_lower() const { return lower_; }       ///< [rad] (7)
+  const Vector7& position_upper() const { return upper_; }       ///< [rad] (7)
+  const Vector7& velocity_limit() const { return vel_limit_; }   ///< [rad/s] (7)
+  const Vector7& torque_limit() const { return torque_limit_; }  ///< [N m] (7)
+  const Vector7& armature() const { return armature_; }          ///< [kg m^2] (7)
+  const Vector7& damping() const { return damping_; }            ///< [N m s/rad] (7)
   /// Link inertials in their DH frames; entry 6 is link 7 with the club rigidly attached.
   const std::array<LinkInertial, kNumJoints>& inertials() const { return inertials_; }
   /// [m/s^2] gravity in frame 0, (3).
@@ -95,6 +101,7 @@ Eigen::Isometry3d dh_flange_pose(const ArmModel& arm, const Vector7& q);
 /// world_T_face from the DH table.
 Eigen::Isometry3d dh_club_pose(const ArmModel& arm, const Vector7& q);
 /// Club-face pose and geometric Jacobian (same layout as club_jacobian) from the DH table.
-void dh_club_jacobian(const ArmModel& arm, const Vector7& q, Eigen::Isometry3d& pose, Matrix67& jacobian);
+void dh_club_jacobian(const ArmModel& arm, const Vector7& q, Eigen::Isometry3d& pose,
+                      Matrix67& jacobian);
 
 }  // namespace mg::robot

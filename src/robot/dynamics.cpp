@@ -18,8 +18,8 @@ Rigid to_rigid(const LinkInertial& l) {
 
 // Plain RNEA in frame 0 (the shoulder frame). Joint i turns about z_{i-1} through p_{i-1}.
 // Gravity enters as a base acceleration of -g.
-void rnea(const ArmModel& arm, const Vector7& q, const Vector7& qd, const Vector7& qdd, bool gravity,
-          Vector7& tau) {
+void rnea(const ArmModel& arm, const Vector7& q, const Vector7& qd, const Vector7& qdd,
+          bool gravity, Vector7& tau) {
   std::array<Eigen::Matrix3d, kNumJoints> rot;
   std::array<Eigen::Vector3d, kNumJoints + 1> origin, axis;  // index i: frame i (0..7)
   std::array<Eigen::Vector3d, kNumJoints> force, torque;     // per link: m a_c, I alpha + w x I w
@@ -42,7 +42,8 @@ void rnea(const ArmModel& arm, const Vector7& q, const Vector7& qd, const Vector
     const Eigen::Vector3d w_prev = w;
     w = w_prev + z * qd(i);
     dw = dw + z * qdd(i) + w_prev.cross(z * qd(i));
-    // Acceleration of the frame-i origin: p_{i-1} lies on the joint axis, so it moves with both links.
+    // Acceleration of the frame-i origin: p_{i-1} lies on the joint axis, so it moves with both
+    // links.
     const Eigen::Vector3d r = origin[k + 1] - origin[k];
     acc = acc + dw.cross(r) + w.cross(w.cross(r));
 
@@ -71,8 +72,8 @@ bool finite(const Vector7& v) { return v.allFinite(); }
 
 }  // namespace
 
-RtStatus inverse_dynamics(const ArmModel& arm, const Vector7& q, const Vector7& qd, const Vector7& qdd, Vector7& tau,
-                          const DynamicsTerms& terms) {
+RtStatus inverse_dynamics(const ArmModel& arm, const Vector7& q, const Vector7& qd,
+                          const Vector7& qdd, Vector7& tau, const DynamicsTerms& terms) {
   if (!finite(q) || !finite(qd) || !finite(qdd)) {
     tau.setZero();
     return RtStatus::kInvalidInput;

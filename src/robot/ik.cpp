@@ -1,10 +1,10 @@
 #include "robot/ik.hpp"
 
-#include <algorithm>
-#include <cmath>
+#include <fmt/format.h>
 
 #include <Eigen/Cholesky>
-#include <fmt/format.h>
+#include <algorithm>
+#include <cmath>
 
 #include "core/check.hpp"
 #include "core/error.hpp"
@@ -25,7 +25,8 @@ void IkOptions::validate() const {
 }
 
 void IkSolveOptions::validate() const {
-  if (max_iterations < 1) throw InputError(fmt::format("ik.max_iterations: expected >= 1, got {}", max_iterations));
+  if (max_iterations < 1)
+    throw InputError(fmt::format("ik.max_iterations: expected >= 1, got {}", max_iterations));
   require_positive("ik.position_tolerance", position_tolerance);
   require_positive("ik.orientation_tolerance", orientation_tolerance);
   step.validate();
@@ -35,16 +36,19 @@ Eigen::Matrix3d face_rotation(double heading) {
   return Eigen::AngleAxisd(heading, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
-Vector6 face_pose_error(const Eigen::Isometry3d& current, const Eigen::Vector3d& position, const Eigen::Matrix3d& rotation) {
+Vector6 face_pose_error(const Eigen::Isometry3d& current, const Eigen::Vector3d& position,
+                        const Eigen::Matrix3d& rotation) {
   Vector6 e;
   e.head<3>() = position - current.translation();
   e.tail<3>() = rotation_to_vector(rotation * current.linear().transpose());
   return e;
 }
 
-RtStatus velocity_ik(const ArmModel& arm, const Vector7& q, const Matrix67& jacobian, const Vector6& task_velocity,
-                     const Vector7& posture_velocity, const IkOptions& o, Vector7& qd) {
-  if (!q.allFinite() || !jacobian.allFinite() || !task_velocity.allFinite() || !posture_velocity.allFinite()) {
+RtStatus velocity_ik(const ArmModel& arm, const Vector7& q, const Matrix67& jacobian,
+                     const Vector6& task_velocity, const Vector7& posture_velocity,
+                     const IkOptions& o, Vector7& qd) {
+  if (!q.allFinite() || !jacobian.allFinite() || !task_velocity.allFinite() ||
+      !posture_velocity.allFinite()) {
     qd.setZero();
     return RtStatus::kInvalidInput;
   }
@@ -70,9 +74,9 @@ RtStatus velocity_ik(const ArmModel& arm, const Vector7& q, const Matrix67& jaco
     const Matrix6 jjt = jf * jf.transpose();
     const Eigen::LLT<Matrix6> llt(jjt + damp);
     const Vector6 v = task_velocity - jacobian * fixed;
-    // qd = J# v + (I - J+ J) z. The task uses the damped pseudo-inverse J# = J^T (J J^T + l^2 I)^-1;
-    // the null-space projector uses an almost undamped one, so the posture pull does not leak into
-    // the task and bias it (its eigenvalues stay in [0, 1] whatever the conditioning).
+    // qd = J# v + (I - J+ J) z. The task uses the damped pseudo-inverse J# = J^T (J J^T + l^2
+    // I)^-1; the null-space projector uses an almost undamped one, so the posture pull does not
+    // leak into the task and bias it (its eigenvalues stay in [0, 1] whatever the conditioning).
     const Eigen::LLT<Matrix6> llt_null(jjt + kNullRegularisation * Matrix6::Identity());
     const Vector7 z_null = z - jf.transpose() * llt_null.solve(jf * z);
     qd = jf.transpose() * llt.solve(v) + z_null + fixed;
@@ -97,8 +101,8 @@ RtStatus velocity_ik(const ArmModel& arm, const Vector7& q, const Matrix67& jaco
   return status;
 }
 
-RtStatus track_face(const ArmModel& arm, const Vector7& q, const FaceTarget& target, const Vector7& posture,
-                    const IkOptions& o, Vector7& qd, Vector6* error) {
+RtStatus track_face(const ArmModel& arm, const Vector7& q, const FaceTarget& target,
+                    const Vector7& posture, const IkOptions& o, Vector7& qd, Vector6* error) {
   if (!q.allFinite() || !target.position.allFinite() || !std::isfinite(target.heading) ||
       !target.velocity.allFinite() || !posture.allFinite()) {
     qd.setZero();
@@ -116,18 +120,20 @@ RtStatus track_face(const ArmModel& arm, const Vector7& q, const FaceTarget& tar
   return velocity_ik(arm, q, jacobian, v, o.posture_gain * (posture - q), o, qd);
 }
 
-IkResult solve_ik(const ArmModel& arm, const FaceTarget& target, const Vector7& start, const Vector7& posture,
-                  const IkSolveOptions& options) {
+IkResult solve_ik(const ArmModel& arm, const FaceTarget& target, const Vector7& start,
+                  const Vector7& posture, const IkSolveOptions& options) {
   options.validate();
-  if (!start.allFinite() || !posture.allFinite() || !target.position.allFinite() || !std::isfinite(target.heading))
+  if (!start.allFinite() || !posture.allFinite() || !target.position.allFinite() ||
+      !std::isfinite(target.heading))
     throw InputError("ik: expected finite start, posture and target");
   for (int i = 0; i < kNumJoints; ++i)
     if (start(i) < arm.position_lower()(i) || start(i) > arm.position_upper()(i))
-      throw InputError(fmt::format("ik: start q[{}]: expected a value in [{}, {}], got {}", i, arm.position_lower()(i),
-                                   arm.position_upper()(i), start(i)));
+      throw InputError(fmt::format("ik: start q[{}]: expected a value in [{}, {}], got {}", i,
+                                   arm.position_lower()(i), arm.position_upper()(i), start(i)));
   FaceTarget static_target = target;
   static_target.velocity.setZero();
-  const Vector7 clamped_posture = posture.cwiseMax(arm.position_lower()).cwiseMin(arm.position_upper());
+  const Vector7 clamped_posture =
+      posture.cwiseMax(arm.position_lower()).cwiseMin(arm.position_upper());
 
   auto descend = [&](const Vector7& from, int budget) {
     IkResult r;
@@ -139,7 +145,8 @@ IkResult solve_ik(const ArmModel& arm, const FaceTarget& target, const Vector7& 
       r.iterations = it;
       r.position_error = e.head<3>().norm();
       r.orientation_error = e.tail<3>().norm();
-      if (r.position_error < options.position_tolerance && r.orientation_error < options.orientation_tolerance) {
+      if (r.position_error < options.position_tolerance &&
+          r.orientation_error < options.orientation_tolerance) {
         r.converged = true;
         return r;
       }
@@ -151,13 +158,17 @@ IkResult solve_ik(const ArmModel& arm, const FaceTarget& target, const Vector7& 
   };
   // A start far from the posture can stall against a joint limit; then restart once from the
   // posture with the remaining budget and keep the better outcome.
-  const int first_budget = options.max_iterations / 2 > 0 ? options.max_iterations / 2 : options.max_iterations;
-  IkResult first = descend(start, (start - clamped_posture).isZero() ? options.max_iterations : first_budget);
-  if (first.converged || (start - clamped_posture).isZero() || options.max_iterations - first.iterations < 1)
+  const int first_budget =
+      options.max_iterations / 2 > 0 ? options.max_iterations / 2 : options.max_iterations;
+  IkResult first =
+      descend(start, (start - clamped_posture).isZero() ? options.max_iterations : first_budget);
+  if (first.converged || (start - clamped_posture).isZero() ||
+      options.max_iterations - first.iterations < 1)
     return first;
   IkResult second = descend(clamped_posture, options.max_iterations - first.iterations);
   second.iterations += first.iterations;
-  if (second.converged || second.position_error + second.orientation_error < first.position_error + first.orientation_error)
+  if (second.converged || second.position_error + second.orientation_error <
+                              first.position_error + first.orientation_error)
     return second;
   first.iterations = second.iterations;
   return first;

@@ -12,13 +12,13 @@ namespace mg::robot {
 
 /// Gains and bounds of the velocity-level IK (one control period).
 struct IkOptions {
-  double damping = 0.02;         ///< DLS lambda (task units m/rad)
-  double position_gain = 20.0;   ///< [1/s] feedback on the face position error
-  double orientation_gain = 20.0;///< [1/s] feedback on the face orientation error
-  double posture_gain = 2.0;     ///< [1/s] null-space pull towards the posture
-  double limit_margin = 0.05;    ///< [rad] joints stay this far inside their position limits
-  double dt = 0.002;             ///< [s] period: bounds qd so that q + qd dt stays inside the margin
-  double velocity_scale = 1.0;   ///< fraction of the joint velocity limits allowed, (0, 1]
+  double damping = 0.02;           ///< DLS lambda (task units m/rad)
+  double position_gain = 20.0;     ///< [1/s] feedback on the face position error
+  double orientation_gain = 20.0;  ///< [1/s] feedback on the face orientation error
+  double posture_gain = 2.0;       ///< [1/s] null-space pull towards the posture
+  double limit_margin = 0.05;      ///< [rad] joints stay this far inside their position limits
+  double dt = 0.002;            ///< [s] period: bounds qd so that q + qd dt stays inside the margin
+  double velocity_scale = 1.0;  ///< fraction of the joint velocity limits allowed, (0, 1]
 
   /// Throws mg::InputError naming the field.
   void validate() const;
@@ -27,8 +27,8 @@ struct IkOptions {
 /// Desired club-face state, world frame.
 struct FaceTarget {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< [m] face centre
-  double heading = 0.0;                                ///< [rad] face-normal direction about world z
-  Vector6 velocity = Vector6::Zero();                  ///< [m/s, rad/s] feed-forward twist (linear; angular)
+  double heading = 0.0;                ///< [rad] face-normal direction about world z
+  Vector6 velocity = Vector6::Zero();  ///< [m/s, rad/s] feed-forward twist (linear; angular)
 };
 
 /// R_z(heading): the face orientation for a hitting direction [rad].
@@ -36,7 +36,8 @@ Eigen::Matrix3d face_rotation(double heading);
 
 /// [m; rad] (6) task error: desired - current position, and the rotation vector of
 /// R_desired R_current^T (world frame).
-Vector6 face_pose_error(const Eigen::Isometry3d& current, const Eigen::Vector3d& position, const Eigen::Matrix3d& rotation);
+Vector6 face_pose_error(const Eigen::Isometry3d& current, const Eigen::Vector3d& position,
+                        const Eigen::Matrix3d& rotation);
 
 /// Real-time velocity IK: joint velocities qd [rad/s] (7) with J qd ~= task_velocity [m/s; rad/s]
 /// (6, world) plus (I - J^+ J) posture_velocity [rad/s] (7), within the joint velocity limits and
@@ -66,7 +67,7 @@ struct IkSolveOptions {
 };
 
 struct IkResult {
-  Vector7 q = Vector7::Zero();     ///< [rad] final joint positions (always within limits)
+  Vector7 q = Vector7::Zero();  ///< [rad] final joint positions (always within limits)
   bool converged = false;
   int iterations = 0;
   double position_error = 0.0;     ///< [m]
@@ -77,7 +78,7 @@ struct IkResult {
 /// within tolerance. `posture` [rad] (7) resolves the redundancy; if the descent from `start`
 /// stalls (half the iteration budget), it restarts once from `posture`. Throws mg::InputError on
 /// non-finite input or a start outside the joint limits.
-IkResult solve_ik(const ArmModel& arm, const FaceTarget& target, const Vector7& start, const Vector7& posture,
-                  const IkSolveOptions& options = {});
+IkResult solve_ik(const ArmModel& arm, const FaceTarget& target, const Vector7& start,
+                  const Vector7& posture, const IkSolveOptions& options = {});
 
 }  // namespace mg::robot

@@ -80,7 +80,8 @@ LinkInertial combine_inertials(const LinkInertial& a, const LinkInertial& b) {
   auto shifted = [&c](const LinkInertial& l, const Eigen::Vector3d& cl) {
     const Eigen::Vector3d d = cl - c;
     return Eigen::Matrix3d(to_matrix(l.inertia) +
-                           l.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
+                           l.mass *
+                               (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
   };
   const Eigen::Matrix3d inertia = shifted(a, ca) + shifted(b, cb);
   return {m, {c.x(), c.y(), c.z()}, from_matrix(inertia)};

@@ -2,10 +2,9 @@
 /// Forward kinematics of the WAM + club from the DH table, independent of MuJoCo.
 ///
 /// Every function here is real-time safe: no allocation, no exceptions (fixed-size Eigen types).
-#include <array>
-
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 
 #include "robot/wam_params.hpp"
 

@@ -3,8 +3,9 @@
 ///
 /// Body frames of `wam_link1..7` coincide with the DH link frames 1..7, so COMs and inertia
 /// tensors are written as tabulated, in the DH link frames (the tensor as principal moments and
-/// axes computed in double precision, see wam_model.cpp for why not `fullinertia`). Joint i turns about z of frame i-1; in body i that axis and
-/// point are R_x(alpha_i)^T z and -R_x(alpha_i)^T (a_i, 0, d_i).
+/// axes computed in double precision, see wam_model.cpp for why not `fullinertia`). Joint i turns
+/// about z of frame i-1; in body i that axis and point are R_x(alpha_i)^T z and -R_x(alpha_i)^T
+/// (a_i, 0, d_i).
 ///
 /// Names: joints `wam_j1..7`, bodies `wam_base`, `wam_link1..7`, `wam_club`, actuators `wam_m1..7`,
 /// site `club_face`, geom `club_head` (the only colliding geom: contype 4, conaffinity 0).
@@ -39,8 +40,8 @@ struct WamMount {
 /// [rad] (7) rest posture for the default mount: the club face at about (-0.175, 0, 0.16) m,
 /// vertical, normal along +x; at least 0.13 rad from every joint limit along the IK solutions over
 /// the whole hitting region (notes/robot.md). Also a good IK start and null-space posture.
-inline constexpr std::array<double, kNumJoints> kDefaultRestPosture{0.0413, 0.8483, 0.1533, 2.4368,
-                                                                   -2.8162, 0.5102, -0.1911};
+inline constexpr std::array<double, kNumJoints> kDefaultRestPosture{0.0413,  0.8483, 0.1533, 2.4368,
+                                                                    -2.8162, 0.5102, -0.1911};
 
 /// `<body>` XML for the arm (base, links, club) to insert into a `<worldbody>`.
 std::string wam_bodies_mjcf(const WamMount& mount);

@@ -34,16 +34,17 @@ inline constexpr std::array<DhRow, kNumJoints> kDhTable{{
 inline constexpr double kShoulderHeight = 0.346;
 
 /// [rad] joint position limits (manual Table 6), (7).
-inline constexpr std::array<double, kNumJoints> kJointLower{-2.6, -2.0, -2.8, -0.9, -4.76, -1.6, -3.0};
+inline constexpr std::array<double, kNumJoints> kJointLower{-2.6,  -2.0, -2.8, -0.9,
+                                                            -4.76, -1.6, -3.0};
 inline constexpr std::array<double, kNumJoints> kJointUpper{2.6, 2.0, 2.8, 3.1, 1.24, 1.6, 3.0};
 
 /// [N m] model torque limits used as actuator ctrlrange, (7).
 inline constexpr std::array<double, kNumJoints> kTorqueLimit{60, 60, 45, 30, 10, 10, 10};
 
 /// [rad/s] joint velocity limits, (7). Our pick: no joint-level figure is published with the
-/// tables. With the shoulder-to-club-face lever (~1.2 m) 2 rad/s at J1/J2 already gives ~2.4 m/s,
-/// above the 1.5 m/s end-point safety rule and under the WAM's 3 m/s maximum end-point speed;
-/// the lighter wrist gets more headroom because the club-face speed of a putt comes mostly from it.
+/// tables. With the shoulder-to-club-face lever at rest (~1.0 m) 2 rad/s at J1/J2 alone gives
+/// ~2 m/s, above the 1.5 m/s end-point safety rule and under the WAM's 3 m/s maximum end-point
+/// speed; the light wrist gets more headroom (the club lever from J5/J6 is ~0.75 m).
 inline constexpr std::array<double, kNumJoints> kVelocityLimit{2.0, 2.0, 2.5, 2.5, 3.0, 3.0, 3.0};
 
 /// [m/s] end-point (club face) speed limits: the libbarrett safety rule, and the WAM maximum.
@@ -54,7 +55,8 @@ inline constexpr double kMaxEndpointSpeed = 3.0;
 /// (0.205, 0.094). Our picks for the rest: they scale with the square of the transmission ratio,
 /// libbarrett's base ratios are about 42 : 28.25 : 28.25 : 18 and the wrist ones about 9.5-15 with
 /// smaller motors, so J3 ~ J2, J4 ~ 0.04, wrist 3.5e-3 / 3.5e-3 / 1e-3.
-inline constexpr std::array<double, kNumJoints> kArmature{0.205, 0.094, 0.094, 0.040, 0.0035, 0.0035, 0.0010};
+inline constexpr std::array<double, kNumJoints> kArmature{0.205,  0.094,  0.094, 0.040,
+                                                          0.0035, 0.0035, 0.0010};
 
 /// [N m s/rad] viscous joint damping (MJCF `damping`), (7). Small; our pick.
 inline constexpr std::array<double, kNumJoints> kDamping{0.10, 0.10, 0.05, 0.05, 0.01, 0.01, 0.01};
@@ -69,12 +71,22 @@ struct LinkInertial {
 
 /// libbarrett wam7w.conf "inertial specifications Sept 2008".
 inline constexpr std::array<LinkInertial, kNumJoints> kLinkInertials{{
-    {10.7677, {-0.00443, 0.12189, -0.00066}, {0.13488, 0.11328, 0.09046, -0.00213, -0.000125, 0.000686}},
-    {3.8749, {-0.00237, 0.03106, 0.01542}, {0.02141, 0.01378, 0.01559, 0.000272, 0.0000246, -0.00182}},
-    {1.8023, {-0.03826, 0.20751, 0.00003}, {0.05911, 0.003246, 0.05927, -0.00250, 0.0000074, -0.0000177}},
-    {2.17266, {0.00553, 0.0000682, 0.11928}, {0.010675, 0.010587, 0.002820, 0.0000450, -0.00135557, -0.000110}},
+    {10.7677,
+     {-0.00443, 0.12189, -0.00066},
+     {0.13488, 0.11328, 0.09046, -0.00213, -0.000125, 0.000686}},
+    {3.8749,
+     {-0.00237, 0.03106, 0.01542},
+     {0.02141, 0.01378, 0.01559, 0.000272, 0.0000246, -0.00182}},
+    {1.8023,
+     {-0.03826, 0.20751, 0.00003},
+     {0.05911, 0.003246, 0.05927, -0.00250, 0.0000074, -0.0000177}},
+    {2.17266,
+     {0.00553, 0.0000682, 0.11928},
+     {0.010675, 0.010587, 0.002820, 0.0000450, -0.00135557, -0.000110}},
     {0.35656, {0.0000548, 0.02886, 0.00148}, {0.000371, 0.000194, 0.000382, 0.0, 0.0, -0.0000161}},
-    {0.40916, {-0.0000592, -0.01686, 0.02419}, {0.000549, 0.000238, 0.000451, 0.0, 0.0, -0.0000443}},
+    {0.40916,
+     {-0.0000592, -0.01686, 0.02419},
+     {0.000549, 0.000238, 0.000451, 0.0, 0.0, -0.0000443}},
     {0.07548, {0.000148, 0.0000725, -0.00335}, {0.0000391, 0.0000388, 0.0000761, 0.0, 0.0, 0.0}},
 }};
 

@@ -1,9 +1,9 @@
 #pragma once
 // Shared fixture: the standalone WAM model compiled once per test, its ArmModel and random joint
 // configurations inside the limits.
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "core/rng.hpp"
 #include "robot/arm_model.hpp"
@@ -29,7 +29,8 @@ class WamFixture : public ::testing::Test {
   Vector7 random_q(Rng& rng, double inset = 0.0) const {
     Vector7 q;
     for (int i = 0; i < kNumJoints; ++i) {
-      std::uniform_real_distribution<double> u(arm_->position_lower()(i) + inset, arm_->position_upper()(i) - inset);
+      std::uniform_real_distribution<double> u(arm_->position_lower()(i) + inset,
+                                               arm_->position_upper()(i) - inset);
       q(i) = u(rng);
     }
     return q;

@@ -1,9 +1,9 @@
-#include <cmath>
-#include <limits>
-
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
 
 #include "robot/dynamics.hpp"
 #include "robot_test_util.hpp"
@@ -54,7 +54,8 @@ TEST_F(WamDynamics, GravityTorqueEqualsMujocoBiasAtRest) {
     mj_forward(model_.get(), data_.get());
     Vector7 g;
     ASSERT_EQ(gravity_torque(*arm_, q, g), RtStatus::kOk);
-    for (int i = 0; i < kNumJoints; ++i) EXPECT_NEAR(g(i), data_->qfrc_bias[arm_->dof_address(i)], 1e-9);
+    for (int i = 0; i < kNumJoints; ++i)
+      EXPECT_NEAR(g(i), data_->qfrc_bias[arm_->dof_address(i)], 1e-9);
   }
 }
 
@@ -78,7 +79,10 @@ TEST_F(WamDynamics, MassMatrixIsSymmetricPositiveDefiniteAndEqualsMujoco) {
     mj_fullM(model_.get(), full.data(), data_->qM);
     for (int r = 0; r < kNumJoints; ++r)
       for (int c = 0; c < kNumJoints; ++c)
-        EXPECT_NEAR(mass(r, c), full[static_cast<std::size_t>(arm_->dof_address(r) * model_->nv + arm_->dof_address(c))], 1e-10);
+        EXPECT_NEAR(mass(r, c),
+                    full[static_cast<std::size_t>(arm_->dof_address(r) * model_->nv +
+                                                  arm_->dof_address(c))],
+                    1e-10);
   }
 }
 
@@ -92,14 +96,16 @@ TEST_F(WamDynamics, ArmatureAndDampingTermsAreSeparable) {
   EXPECT_LT((full - bare - expected).cwiseAbs().maxCoeff(), 1e-12);
   // Gravity off at rest gives zero torque.
   Vector7 none;
-  ASSERT_EQ(inverse_dynamics(*arm_, q, Vector7::Zero(), Vector7::Zero(), none, {true, true, false}), RtStatus::kOk);
+  ASSERT_EQ(inverse_dynamics(*arm_, q, Vector7::Zero(), Vector7::Zero(), none, {true, true, false}),
+            RtStatus::kOk);
   EXPECT_LT(none.cwiseAbs().maxCoeff(), 1e-15);
 }
 
 TEST_F(WamDynamics, HoldingTheRestPostureNeedsLessThanTheTorqueLimits) {
   Vector7 g;
   ASSERT_EQ(gravity_torque(*arm_, testing::rest_posture(), g), RtStatus::kOk);
-  for (int i = 0; i < kNumJoints; ++i) EXPECT_LT(std::abs(g(i)), 0.8 * arm_->torque_limit()(i)) << "joint " << i;
+  for (int i = 0; i < kNumJoints; ++i)
+    EXPECT_LT(std::abs(g(i)), 0.8 * arm_->torque_limit()(i)) << "joint " << i;
 }
 
 // Computed-torque control with our RNEA holds the rest posture in the MuJoCo simulation (Euler,
@@ -147,11 +153,13 @@ TEST_F(WamDynamics, NonFiniteInputGivesAStatusNotAThrow) {
   Vector7 q = testing::rest_posture();
   q(3) = std::numeric_limits<double>::quiet_NaN();
   Vector7 tau = Vector7::Constant(7.0);
-  EXPECT_EQ(inverse_dynamics(*arm_, q, Vector7::Zero(), Vector7::Zero(), tau), RtStatus::kInvalidInput);
+  EXPECT_EQ(inverse_dynamics(*arm_, q, Vector7::Zero(), Vector7::Zero(), tau),
+            RtStatus::kInvalidInput);
   EXPECT_TRUE(tau.isZero());
   Vector7 qd = Vector7::Zero();
   qd(0) = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(inverse_dynamics(*arm_, testing::rest_posture(), qd, Vector7::Zero(), tau), RtStatus::kInvalidInput);
+  EXPECT_EQ(inverse_dynamics(*arm_, testing::rest_posture(), qd, Vector7::Zero(), tau),
+            RtStatus::kInvalidInput);
   EXPECT_EQ(gravity_torque(*arm_, q, tau), RtStatus::kInvalidInput);
   Matrix7 mass;
   EXPECT_EQ(mass_matrix(*arm_, q, mass), RtStatus::kInvalidInput);

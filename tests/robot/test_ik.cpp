@@ -1,9 +1,9 @@
-#include <cmath>
-#include <limits>
-
-#include <Eigen/SVD>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include <Eigen/SVD>
+#include <cmath>
+#include <limits>
 
 #include "core/error.hpp"
 #include "robot/ik.hpp"
@@ -12,8 +12,8 @@
 namespace mg::robot {
 namespace {
 
-using testing::WamFixture;
 using testing::rest_posture;
+using testing::WamFixture;
 
 constexpr double kDeg = kPi / 180.0;
 
@@ -32,11 +32,13 @@ class WamIk : public WamFixture {
     const Eigen::Isometry3d face = club_pose(*arm_, data_.get());
     const Eigen::Vector3d normal = face.linear().col(0);
     const Eigen::Vector3d wanted(std::cos(t.heading), std::sin(t.heading), 0.0);
-    return {(face.translation() - t.position).norm(), std::acos(std::clamp(normal.dot(wanted), -1.0, 1.0)),
+    return {(face.translation() - t.position).norm(),
+            std::acos(std::clamp(normal.dot(wanted), -1.0, 1.0)),
             std::acos(std::clamp(face.linear()(2, 2), -1.0, 1.0))};
   }
   bool within_limits(const Vector7& q) const {
-    return (q.array() >= arm_->position_lower().array()).all() && (q.array() <= arm_->position_upper().array()).all();
+    return (q.array() >= arm_->position_lower().array()).all() &&
+           (q.array() <= arm_->position_upper().array()).all();
   }
 };
 
@@ -61,7 +63,8 @@ TEST_F(WamIk, ReachesTheHittingRegionWithinOneMillimetreAndOneDegree) {
           EXPECT_LT(c.tilt, 1.0 * kDeg);
           worst_pos = std::max(worst_pos, c.position_error);
           worst_ang = std::max({worst_ang, c.normal_error, c.tilt});
-          const Vector7 room = (r.q - arm_->position_lower()).cwiseMin(arm_->position_upper() - r.q);
+          const Vector7 room =
+              (r.q - arm_->position_lower()).cwiseMin(arm_->position_upper() - r.q);
           worst_margin = std::min(worst_margin, room.minCoeff());
         }
   EXPECT_EQ(targets, 135);
@@ -76,7 +79,8 @@ TEST_F(WamIk, ReachesTheHittingRegionWithinOneMillimetreAndOneDegree) {
 // would): all converge, within limits.
 TEST_F(WamIk, ReachesRandomTargetsFromChainedStarts) {
   Rng rng(41);
-  std::uniform_real_distribution<double> ux(-0.45, 0.1), uy(-0.15, 0.15), uz(0.02, 0.30), uh(-0.5, 0.5);
+  std::uniform_real_distribution<double> ux(-0.45, 0.1), uy(-0.15, 0.15), uz(0.02, 0.30),
+      uh(-0.5, 0.5);
   Vector7 q = rest_posture();
   int failures = 0;
   for (int k = 0; k < 300; ++k) {
@@ -120,7 +124,8 @@ TEST_F(WamIk, VelocityIkReproducesAFeasibleTaskVelocity) {
     Vector6 v;
     for (int i = 0; i < 6; ++i) v(i) = u(rng);
     Vector7 qd;
-    ASSERT_EQ(velocity_ik(*arm_, rest_posture(), jac, v, Vector7::Zero(), options, qd), RtStatus::kOk);
+    ASSERT_EQ(velocity_ik(*arm_, rest_posture(), jac, v, Vector7::Zero(), options, qd),
+              RtStatus::kOk);
     EXPECT_LE((jac * qd - v).norm() / v.norm(), bound * (1.0 + 1e-9));
   }
   // Without damping the task velocity is reproduced exactly.
@@ -129,12 +134,14 @@ TEST_F(WamIk, VelocityIkReproducesAFeasibleTaskVelocity) {
   Vector6 v;
   v << 0.1, -0.2, 0.05, 0.3, -0.1, 0.2;
   Vector7 exact;
-  ASSERT_EQ(velocity_ik(*arm_, rest_posture(), jac, v, Vector7::Zero(), undamped, exact), RtStatus::kOk);
+  ASSERT_EQ(velocity_ik(*arm_, rest_posture(), jac, v, Vector7::Zero(), undamped, exact),
+            RtStatus::kOk);
   EXPECT_LT((jac * exact - v).norm(), 1e-10);
   // A pure posture velocity lives in the null space: the face does not move.
   Vector7 qd;
   const Vector7 z = 0.3 * Vector7::Ones();
-  ASSERT_EQ(velocity_ik(*arm_, rest_posture(), jac, Vector6::Zero(), z, options, qd), RtStatus::kOk);
+  ASSERT_EQ(velocity_ik(*arm_, rest_posture(), jac, Vector6::Zero(), z, options, qd),
+            RtStatus::kOk);
   EXPECT_LT((jac * qd).norm(), 1e-6);
   EXPECT_GT(qd.norm(), 1e-3);
 }
@@ -214,7 +221,8 @@ TEST_F(WamIk, ALockedJointIsTakenOutOfTheTask) {
   // (same Jacobian: only the bounds change).
   int j = 0;
   free_qd.cwiseAbs().maxCoeff(&j);
-  q(j) = free_qd(j) > 0 ? arm_->position_upper()(j) - options.limit_margin : arm_->position_lower()(j) + options.limit_margin;
+  q(j) = free_qd(j) > 0 ? arm_->position_upper()(j) - options.limit_margin
+                        : arm_->position_lower()(j) + options.limit_margin;
   Vector7 qd;
   EXPECT_EQ(velocity_ik(*arm_, q, jac, v, Vector7::Zero(), options, qd), RtStatus::kSaturated);
   EXPECT_NEAR(qd(j), 0.0, 1e-12);
@@ -232,7 +240,8 @@ TEST_F(WamIk, BadInputGivesStatusInRealTimeAndThrowsInTheSolver) {
   q(2) = std::numeric_limits<double>::quiet_NaN();
   Matrix67 jac = Matrix67::Zero();
   Vector7 qd = Vector7::Ones();
-  EXPECT_EQ(velocity_ik(*arm_, q, jac, Vector6::Zero(), Vector7::Zero(), options, qd), RtStatus::kInvalidInput);
+  EXPECT_EQ(velocity_ik(*arm_, q, jac, Vector6::Zero(), Vector7::Zero(), options, qd),
+            RtStatus::kInvalidInput);
   EXPECT_TRUE(qd.isZero());
   FaceTarget t;
   qd.setOnes();

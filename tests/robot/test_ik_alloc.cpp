@@ -1,9 +1,9 @@
 // The functions the 500 Hz controller calls must not touch the heap. We interpose malloc for this
 // test binary (glibc) and count calls while the measured region runs; Eigen allocates through it.
+#include <gtest/gtest.h>
+
 #include <atomic>
 #include <cstdlib>
-
-#include <gtest/gtest.h>
 
 #include "robot/dynamics.hpp"
 #include "robot/ik.hpp"

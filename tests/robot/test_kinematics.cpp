@@ -41,14 +41,17 @@ TEST_F(WamFixture, MujocoLinkFramesEqualDhForwardKinematics) {
     pose_model(q);
     dh_link_frames(q, frames);
     for (int i = 0; i < kNumJoints; ++i) {
-      const int b = mj_name2id(model_.get(), mjOBJ_BODY, ("wam_link" + std::to_string(i + 1)).c_str());
+      const int b =
+          mj_name2id(model_.get(), mjOBJ_BODY, ("wam_link" + std::to_string(i + 1)).c_str());
       Eigen::Isometry3d mj = Eigen::Isometry3d::Identity();
       mj.translation() = Eigen::Vector3d(data_->xpos + 3 * b);
       mj.linear() = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>(data_->xmat + 9 * b);
-      worst = std::max(worst, max_abs_diff(mj, arm_->shoulder_in_world() * frames[static_cast<std::size_t>(i)]));
+      worst = std::max(
+          worst, max_abs_diff(mj, arm_->shoulder_in_world() * frames[static_cast<std::size_t>(i)]));
     }
     worst = std::max(worst, max_abs_diff(club_pose(*arm_, data_.get()), dh_club_pose(*arm_, q)));
-    worst = std::max(worst, max_abs_diff(flange_pose(*arm_, data_.get()), dh_flange_pose(*arm_, q)));
+    worst =
+        std::max(worst, max_abs_diff(flange_pose(*arm_, data_.get()), dh_flange_pose(*arm_, q)));
   }
   EXPECT_LT(worst, 1e-9);
   RecordProperty("max_fk_difference", fmt::format("{:.3g}", worst));

@@ -1,9 +1,9 @@
-#include <cmath>
-#include <string>
-
-#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <string>
 
 #include "core/error.hpp"
 #include "robot/kinematics.hpp"
@@ -51,26 +51,31 @@ TEST_F(WamFixture, JointRangesArmatureDampingEqualTables) {
 
 TEST_F(WamFixture, TorqueActuatorsEqualTorqueLimits) {
   for (int i = 0; i < kNumJoints; ++i) {
-    const int a = mj_name2id(model_.get(), mjOBJ_ACTUATOR, ("wam_m" + std::to_string(i + 1)).c_str());
+    const int a =
+        mj_name2id(model_.get(), mjOBJ_ACTUATOR, ("wam_m" + std::to_string(i + 1)).c_str());
     ASSERT_GE(a, 0);
     const auto k = static_cast<std::size_t>(i);
     EXPECT_TRUE(model_->actuator_ctrllimited[a]);
     EXPECT_DOUBLE_EQ(model_->actuator_ctrlrange[2 * a], -kTorqueLimit[k]);
     EXPECT_DOUBLE_EQ(model_->actuator_ctrlrange[2 * a + 1], kTorqueLimit[k]);
     EXPECT_DOUBLE_EQ(model_->actuator_gear[6 * a], 1.0);
-    EXPECT_EQ(model_->actuator_trnid[2 * a], mj_name2id(model_.get(), mjOBJ_JOINT, ("wam_j" + std::to_string(i + 1)).c_str()));
+    EXPECT_EQ(model_->actuator_trnid[2 * a],
+              mj_name2id(model_.get(), mjOBJ_JOINT, ("wam_j" + std::to_string(i + 1)).c_str()));
   }
 }
 
 TEST_F(WamFixture, LinkMassesAndCentresEqualTables) {
   for (int i = 0; i < kNumJoints; ++i) {
-    const int b = mj_name2id(model_.get(), mjOBJ_BODY, ("wam_link" + std::to_string(i + 1)).c_str());
+    const int b =
+        mj_name2id(model_.get(), mjOBJ_BODY, ("wam_link" + std::to_string(i + 1)).c_str());
     ASSERT_GE(b, 0);
     const auto& l = kLinkInertials[static_cast<std::size_t>(i)];
     EXPECT_NEAR(model_->body_mass[b], l.mass, 1e-12);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(model_->body_ipos[3 * b + c], l.com[static_cast<std::size_t>(c)], 1e-12);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(model_->body_ipos[3 * b + c], l.com[static_cast<std::size_t>(c)], 1e-12);
     // The compiled principal moments and axes give back the tabulated tensor in the DH frame.
-    EXPECT_LT((compiled_inertia_of(model_.get(), b) - tensor(l)).cwiseAbs().maxCoeff(), 1e-15) << "link " << i + 1;
+    EXPECT_LT((compiled_inertia_of(model_.get(), b) - tensor(l)).cwiseAbs().maxCoeff(), 1e-15)
+        << "link " << i + 1;
   }
   const int club = mj_name2id(model_.get(), mjOBJ_BODY, "wam_club");
   ASSERT_GE(club, 0);
@@ -101,11 +106,12 @@ TEST(WamModel, BodiesInsertIntoAWorldAndTheHeadHitsABall) {
   const Eigen::Isometry3d face = dh_club_pose(dh_arm, Vector7(kDefaultRestPosture.data()));
   // A ball 1 cm in front of the face, moving against it.
   const Eigen::Vector3d ball = face.translation() + (0.0213 + 0.01) * face.linear().col(0);
-  const std::string xml = fmt::format(R"(<mujoco><compiler angle="radian"/><option timestep="0.001"/>
+  const std::string xml =
+      fmt::format(R"(<mujoco><compiler angle="radian"/><option timestep="0.001"/>
 <worldbody><geom name="lane" type="plane" size="3 3 0.1" contype="1" conaffinity="0"/>
 <body name="ball" pos="{} {} {}"><freejoint/><geom name="ball" type="sphere" size="0.0213" mass="0.046" contype="0" conaffinity="5"/></body>
 {}</worldbody><actuator>{}</actuator></mujoco>)",
-                                      ball.x(), ball.y(), ball.z(), wam_bodies_mjcf(mount), wam_actuators_mjcf());
+                  ball.x(), ball.y(), ball.z(), wam_bodies_mjcf(mount), wam_actuators_mjcf());
   sim::ModelPtr m = compile_mjcf(xml);
   sim::DataPtr d(mj_makeData(m.get()));
   const ArmModel arm(m.get(), mount);
@@ -136,7 +142,8 @@ TEST(WamModel, ClubFaceGeometryFollowsTheLieAngle) {
   EXPECT_NEAR(face.linear().col(0).dot(shaft_up), 0.0, 1e-12);
   // With the face vertical the shaft leans (pi/2 - lie) from vertical, towards the heel side.
   EXPECT_NEAR(std::acos(face.linear().col(2).dot(shaft_up)), kPi / 2 - club.lie_angle, 1e-12);
-  EXPECT_GT(face.linear().col(1).dot(-face.translation()), 0.0);  // heel axis points back to the shaft
+  EXPECT_GT(face.linear().col(1).dot(-face.translation()),
+            0.0);  // heel axis points back to the shaft
   EXPECT_TRUE(face.linear().isUnitary(1e-12));
   EXPECT_NEAR(face.linear().determinant(), 1.0, 1e-12);
 }
@@ -145,7 +152,8 @@ TEST(WamModel, ClubInertialIsPhysical) {
   const LinkInertial c = club_inertial(ClubGeometry{});
   EXPECT_NEAR(c.mass, 0.4, 1e-12);
   Eigen::Matrix3d i;
-  i << c.inertia[0], c.inertia[3], c.inertia[4], c.inertia[3], c.inertia[1], c.inertia[5], c.inertia[4], c.inertia[5], c.inertia[2];
+  i << c.inertia[0], c.inertia[3], c.inertia[4], c.inertia[3], c.inertia[1], c.inertia[5],
+      c.inertia[4], c.inertia[5], c.inertia[2];
   const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(i).eigenvalues();
   EXPECT_GT(ev.minCoeff(), 0.0);
   EXPECT_LE(ev(2), ev(0) + ev(1) + 1e-15);  // triangle inequality
