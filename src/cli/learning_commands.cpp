@@ -29,7 +29,7 @@ struct LearnArgs {
   int max_gaussians = 5;
   int restarts = 10;
   std::uint64_t seed = 1;
-  double reg_covar = 1e-3;
+  double reg_covar = 1e-2;
   std::string length_scales, signal_std, noise_std;
   std::string length_scale_bounds, signal_std_bounds, noise_std_bounds;
   bool no_optimize = false;

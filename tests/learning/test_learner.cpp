@@ -116,6 +116,17 @@ TEST(LearningModel, ConstantInputColumnAndOneDimensionalData) {
   }
 }
 
+TEST(LearningModel, ConstantOutputIsPredictedExactly) {
+  Dataset d = flat_field(12, 21);
+  d.outputs.col(1).setConstant(1.25);  // every example hit at the same speed
+  const Eigen::MatrixXd q = flat_field(5, 22).inputs;
+  for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
+    const Predictions p = predict(train(d, options(m, 2)), q);
+    ASSERT_TRUE(p.mean.allFinite() && p.std.allFinite()) << method_name(m);
+    for (Eigen::Index i = 0; i < q.rows(); ++i) EXPECT_NEAR(p.mean(i, 1), 1.25, 1e-9) << method_name(m);
+  }
+}
+
 bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   return a.rows() == b.rows() && a.cols() == b.cols() &&
          std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
