@@ -1,4 +1,7 @@
-// putt --field F --hole X,Y --angle RAD --speed M/S --ball-only [--json] [--trajectory FILE]
+// putt --field F --hole X,Y --angle RAD --speed M/S [--ball-only] [--hitting-model FILE] [--json]
+//      [--trajectory FILE]
+// Without --ball-only the simulated WAM hits the ball (control/full_system.hpp); --angle and --speed
+// are then the hitting angle and the club speed at the ball.
 #include <cmath>
 #include <memory>
 
@@ -7,13 +10,81 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "control/full_system.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "ds/hitting_model.hpp"
 #include "field/field.hpp"
 #include "sim/putt.hpp"
 
 namespace mg::cli {
+namespace {
+
+// The arm hits the ball: the module runs in lockstep simulator mode.
+void run_full_system_putt(const std::string& field_name, const std::string& hole_text,
+                          double angle, double speed, double max_duration,
+                          const std::string& model_path, bool json) {
+  control::ModuleConfig config;
+  config.field = field_name;
+  if (!model_path.empty()) config.hitting_model = model_path;
+  config.validate();
+  if (!std::isfinite(angle) || angle < config.angle_min || angle > config.angle_max)
+    throw InputError(fmt::format("putt: --angle: expected {}..{} rad (safe envelope), got {}",
+                                 config.angle_min, config.angle_max, angle));
+  if (!std::isfinite(speed) || speed < config.speed_min || speed > config.speed_max)
+    throw InputError(fmt::format("putt: --speed: expected {}..{} m/s (club speed, safe envelope), got {}",
+                                 config.speed_min, config.speed_max, speed));
+  if (!std::isfinite(max_duration) || max_duration <= 0.0)
+    throw InputError(fmt::format("putt: --max-duration: expected > 0 s, got {}", max_duration));
+  const std::filesystem::path model_file = model_path.empty()
+                                               ? data_dir() / "models" / "hitting-default.json"
+                                               : std::filesystem::path(model_path);
+  const sim::World world = control::make_world_with_arm(field::load_field(field_name));
+  const auto hole = hole_text.empty() ? world.field().hole.position : parse_vector<2>("--hole", hole_text);
+  field::check_hole_position(world.field(), hole);
+  const control::ModuleModel model =
+      control::make_module_model(world, ds::read_hitting_model(model_file), config);
+  auto data = world.make_data();
+  control::FullPuttOptions options;
+  options.max_duration = max_duration;
+  const control::FullPuttResult r =
+      control::full_system_putt(world, model, data.get(), hole, angle, speed, options);
+  if (r.hit_refused) throw InputError("putt: the module refused the hit request");
+  if (!r.hit) throw NumericalError("putt: the club did not reach the ball");
+  const sim::PuttOutcome& out = r.outcome;
+  if (json) {
+    const nlohmann::json j = {
+        {"field", world.field().name},
+        {"hole", hole},
+        {"angle", angle},
+        {"speed", speed},
+        {"sunk", out.sunk},
+        {"end", sim::to_string(out.end)},
+        {"rest_position", out.rest_position},
+        {"closest_approach", out.closest_approach},
+        {"duration", out.duration},
+        {"steps", out.steps},
+        {"club", {{"angle", r.club.angle}, {"speed", r.club.speed}}},
+        {"launch", {{"angle", r.launch.angle}, {"speed", r.launch.speed}}},
+        {"timing",
+         {{"core_update_p99_us", r.timing.core_update_p99_us},
+          {"core_update_max_us", r.timing.core_update_max_us},
+          {"overruns", r.timing.overruns}}},
+    };
+    fmt::print("{}\n", j.dump());
+  } else {
+    fmt::print("{} on {} (arm): angle {:.4f} rad, club {:.3f} m/s -> launch {:.4f} rad, {:.3f} m/s; "
+               "{} after {:.2f} s; rest ({:.3f}, {:.3f}) m; closest approach {:.4f} m; core update "
+               "p99 {:.1f} us\n",
+               out.sunk ? "SUNK" : "missed", world.field().name, angle, r.club.speed,
+               r.launch.angle, r.launch.speed, sim::to_string(out.end), out.duration,
+               out.rest_position[0], out.rest_position[1], out.closest_approach,
+               r.timing.core_update_p99_us);
+  }
+}
+
+}  // namespace
 
 void add_putt_command(CLI::App& app) {
   struct Options {
@@ -25,6 +96,7 @@ void add_putt_command(CLI::App& app) {
     bool ball_only = false;
     bool json = false;
     std::string trajectory;
+    std::string hitting_model;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("putt", "Simulate one putt and report the outcome");
@@ -37,10 +109,16 @@ void add_putt_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--ball-only", o->ball_only, "Launch the ball directly (no arm)");
   cmd->add_flag("--json", o->json, "Print one JSON object");
-  cmd->add_option("--trajectory", o->trajectory, "Write the ball trajectory to this CSV file");
+  cmd->add_option("--trajectory", o->trajectory,
+                  "Write the ball trajectory to this CSV file (--ball-only)");
+  cmd->add_option("--hitting-model", o->hitting_model,
+                  "Hitting DS model file (default: data/models/hitting-default.json)");
   cmd->callback([o] {
-    if (!o->ball_only)
-      throw InputError("putt: the simulated arm is not part of this build yet; pass --ball-only");
+    if (!o->ball_only) {
+      run_full_system_putt(o->field, o->hole, o->angle, o->speed, o->max_duration,
+                           o->hitting_model, o->json);
+      return;
+    }
     sim::PuttRequest request;
     request.angle = o->angle;
     request.speed = o->speed;

@@ -1,0 +1,94 @@
+#pragma once
+/// The module in fast (lockstep) simulator mode: one thread steps the physics (1 ms, World::step),
+/// calls the core update every 2 steps (500 Hz) and, inside it, the robot update every 5th core
+/// tick; user requests are made between ticks. Deterministic: the same world, inputs and config
+/// give the same bits (wall-clock timing is measured but never fed back).
+#include <array>
+#include <vector>
+
+#include "control/minigolf_module.hpp"
+#include "sim/putt.hpp"
+#include "sim/world.hpp"
+
+namespace mg::control {
+
+/// The field's world with the WAM + club inserted (default mount).
+sim::World make_world_with_arm(field::Field field, const robot::WamMount& mount = {},
+                               sim::WorldOptions options = {});
+
+/// The module model for a world built by make_world_with_arm with the same mount.
+ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
+                              const ModuleConfig& config, const robot::WamMount& mount = {});
+
+/// Wall-clock timing of the core updates of a run.
+struct CoreTiming {
+  double core_update_p99_us = 0.0;
+  double core_update_max_us = 0.0;
+  double core_update_mean_us = 0.0;
+  int overruns = 0;  ///< core updates that took longer than the core period
+  int ticks = 0;
+};
+
+/// One thread, lockstep: physics and module on the same clock.
+class LockstepRunner {
+ public:
+  LockstepRunner(const sim::World& world, const ModuleModel& model, mjData* d);
+  /// One physics step; before it, the core update if the step count is a multiple of the core
+  /// period in steps. Records the core update's wall time.
+  void step();
+  /// Resets the module to Idle at the current arm state of d and clears timing.
+  void reset_module();
+  ModuleData& module() { return data_; }
+  const ModuleData& module() const { return data_; }
+  long steps() const { return steps_; }
+  CoreTiming timing() const;
+
+ private:
+  const sim::World* world_;
+  const ModuleModel* model_;
+  mjData* d_;
+  ModuleData data_;
+  int steps_per_tick_ = 2;
+  long steps_ = 0;
+  std::vector<float> durations_us_;  // reserved up front; grows only past the reservation
+};
+
+struct FullPuttOptions {
+  double settle_timeout = 6.0;    ///< [s] to reach the rest pose
+  double hit_timeout = 3.0;       ///< [s] from the hit request to contact
+  double max_duration = 30.0;     ///< [s] ball roll after the hit
+  double launch_delay = 0.02;     ///< [s] after the first contact, when the launch is measured
+  sim::OutcomeRules rules{};
+};
+
+/// Angle [rad] (atan2 of the horizontal components) and speed [m/s] of a velocity.
+struct AngleSpeed {
+  double angle = 0.0;
+  double speed = 0.0;
+};
+
+struct FullPuttResult {
+  bool hit = false;                 ///< the club struck the ball
+  bool hit_refused = false;         ///< the module refused the request (envelope, NaN)
+  sim::PuttOutcome outcome;  ///< the ball's outcome; duration [s] and steps count from first contact
+  AngleSpeed club;                  ///< club face velocity at first contact (speed: 3-D norm)
+  AngleSpeed launch;                ///< ball velocity launch_delay after contact (horizontal)
+  CoreTiming timing;
+  double max_torque_ratio = 0.0;    ///< max |tau_j| / limit_j of the applied torques
+  double max_raw_torque_ratio = 0.0;  ///< the same before the clamp
+  double max_velocity_ratio = 0.0;  ///< max |qd_j| / limit_j measured
+  double max_command_velocity_ratio = 0.0;  ///< max |qd_des_j| / limit_j commanded by the module
+  double min_position_margin = 0.0;  ///< [rad] min distance of a joint to its range ends
+  double rest_time = 0.0;           ///< [s] simulated time to reach the rest pose
+  double hit_time = 0.0;            ///< [s] from the hit request to contact
+  bool faulted = false;             ///< a fault was observed during the run
+};
+
+/// Resets `d`, sets the hole, puts the arm at the default rest posture, goes to the rest pose for
+/// `angle`, hits at `speed` and simulates until the ball's outcome is decided. Deterministic.
+/// Throws InputError for a bad hole; a refused request is reported in the result.
+FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
+                                std::array<double, 2> hole, double angle, double speed,
+                                const FullPuttOptions& options = {});
+
+}  // namespace mg::control

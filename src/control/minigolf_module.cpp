@@ -1,0 +1,342 @@
+#include "control/minigolf_module.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "robot/dynamics.hpp"
+
+namespace mg::control {
+
+using robot::Vector7;
+
+void fir_reset(FirFilter& f, int taps, const Vector7& value) {
+  f.taps = std::clamp(taps, 1, FirFilter::kMaxTaps);
+  for (auto& b : f.buffer) b = value;
+  f.sum = value * static_cast<double>(f.taps);
+  f.head = 0;
+}
+
+Vector7 fir_step(FirFilter& f, const Vector7& input) {
+  // Running sum: subtract the sample leaving the window, add the new one.
+  auto& slot = f.buffer[static_cast<std::size_t>(f.head)];
+  f.sum += input - slot;
+  slot = input;
+  f.head = (f.head + 1) % f.taps;
+  return f.sum / static_cast<double>(f.taps);
+}
+
+ModuleModel::ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::HittingModel hitting,
+                         const ModuleConfig& config, int ball_geom, int ball_dof)
+    : config_(config), arm_(m, mount), hitting_(std::move(hitting)) {
+  config_.validate();
+  club_geom_ = mj_name2id(m, mjOBJ_GEOM, "club_head");
+  if (club_geom_ < 0) throw InputError("module: the model has no geom 'club_head'");
+  if (ball_geom < 0 || ball_geom >= m->ngeom)
+    throw InputError(fmt::format("module: ball geom: expected 0..{}, got {}", m->ngeom - 1, ball_geom));
+  if (ball_dof < 0 || ball_dof + 6 > m->nv)
+    throw InputError(fmt::format("module: ball dof: expected 0..{}, got {}", m->nv - 6, ball_dof));
+  ball_geom_ = ball_geom;
+  ball_dof_ = ball_dof;
+  ik_.dt = config_.core_period();
+  speed_cap_ = config_.speed_max;
+  if (config_.mode == ModuleMode::kNormal) {
+    speed_cap_ = std::min(speed_cap_, robot::kSafeEndpointSpeed);
+    ik_.velocity_scale = 0.5;
+  }
+  ik_.validate();
+  for (int j = 0; j < 7; ++j) posture_[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
+}
+
+ModuleData::ModuleData(const ModuleModel& model) : ds(model.hitting()) {}
+
+namespace {
+
+constexpr double kEps = 1e-12;
+
+Eigen::Vector3d direction_of(double angle) { return {std::cos(angle), std::sin(angle), 0.0}; }
+
+bool finite(const Vector7& v) { return v.allFinite(); }
+
+double wrap_angle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+bool envelope_ok(const ModuleModel& model, double angle, double speed) {
+  const auto& c = model.config();
+  return std::isfinite(angle) && std::isfinite(speed) && angle >= c.angle_min &&
+         angle <= c.angle_max && speed >= c.speed_min && speed <= model.speed_cap();
+}
+
+/// Moves `from` toward `to` by at most `step` [m].
+Eigen::Vector3d approach(const Eigen::Vector3d& from, const Eigen::Vector3d& to, double step) {
+  const Eigen::Vector3d d = to - from;
+  const double n = d.norm();
+  return n <= step ? to : Eigen::Vector3d(from + d * (step / n));
+}
+
+bool club_touches_ball(const ModuleModel& model, const mjData* d) {
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& c = d->contact[i];
+    if ((c.geom1 == model.club_geom() && c.geom2 == model.ball_geom()) ||
+        (c.geom2 == model.club_geom() && c.geom1 == model.ball_geom()))
+      return true;
+  }
+  return false;
+}
+
+/// Enters a state: resets what the new state integrates from.
+void enter_state(const ModuleModel& model, ModuleData& data, ModuleState next) {
+  const auto& c = model.config();
+  const Eigen::Isometry3d face = robot::dh_club_pose(model.arm(), data.q_ref);
+  data.time_in_state = 0.0;
+  switch (next) {
+    case ModuleState::kIdle:
+      break;
+    case ModuleState::kRest:
+      data.setpoint = face.translation();
+      data.setpoint_heading = std::atan2(face.linear()(1, 0), face.linear()(0, 0));
+      data.at_rest_pose = false;
+      break;
+    case ModuleState::kHitting: {
+      const Eigen::Vector3d psi = direction_of(data.angle);
+      data.p_ref = face.translation() + c.club_face_offset * psi;
+      data.ball_hit = false;
+      data.contact_seen = false;
+      data.v_ds.setZero();
+      data.v_ref.setZero();
+      break;
+    }
+    case ModuleState::kBraking:
+      data.setpoint = face.translation();
+      data.setpoint_heading = std::atan2(face.linear()(1, 0), face.linear()(0, 0));
+      data.v_brake0 = data.state == ModuleState::kHitting ? data.v_ref : Eigen::Vector3d::Zero();
+      break;
+  }
+}
+
+}  // namespace
+
+void module_reset(const ModuleModel& model, ModuleData& data, const mjData* d) {
+  data.state = ModuleState::kIdle;
+  data.pending = Command::kNone;
+  data.request_valid = false;
+  data.tick = 0;
+  data.time_in_state = 0.0;
+  data.q_ref = robot::joint_positions(model.arm(), d);
+  data.qd_des.setZero();
+  data.qdd_des.setZero();
+  data.integral.setZero();
+  data.tau.setZero();
+  data.tau_raw.setZero();
+  fir_reset(data.fir, model.config().fir_length, Vector7::Zero());
+  data.at_rest_pose = false;
+  data.ball_hit = false;
+  data.contact_seen = false;
+  data.compute_fault = false;
+  data.v_ds.setZero();
+  data.last = {};
+}
+
+Eigen::Vector3d rest_face_position(const ModuleModel& model, double angle) {
+  const auto& c = model.config();
+  const Eigen::Vector3d offset(c.rest_offset[0], c.rest_offset[1], c.rest_offset[2]);
+  const Eigen::Vector3d psi = direction_of(angle);
+  return model.hitting().x_star() + ds::rotation_about_z(angle) * offset -
+         c.club_face_offset * psi;
+}
+
+bool request_rest(const ModuleModel& model, ModuleData& data, double angle) {
+  const auto& c = model.config();
+  if (!std::isfinite(angle) || angle < c.angle_min || angle > c.angle_max) return false;
+  data.angle = angle;
+  data.pending = Command::kRest;
+  return true;
+}
+
+bool request_hit(const ModuleModel& model, ModuleData& data, double angle, double speed) {
+  data.pending = Command::kHit;
+  data.request_valid = false;
+  if (!envelope_ok(model, angle, speed)) return false;
+  // A hit starts from the rest pose of its own angle: another angle is refused (not at rest).
+  if (std::abs(angle - data.angle) > 1e-9) return false;
+  ds::HittingCommand cmd;
+  cmd.angle = angle;
+  cmd.speed = speed;
+  cmd.modulator = ds::Modulator::kSine;
+  cmd.start = rest_face_position(model, angle) + model.config().club_face_offset * direction_of(angle);
+  try {
+    data.ds.set_command(model.hitting(), cmd);
+  } catch (const Error&) {
+    return false;
+  }
+  data.speed = speed;
+  data.request_valid = true;
+  return true;
+}
+
+void request_idle(ModuleData& data) { data.pending = Command::kIdle; }
+
+void robot_update(const ModuleModel& model, ModuleData& data) {
+  const auto& h = model.hitting();
+  // Past the hitting plane the DS keeps commanding the hitting velocity (notes/ds.md).
+  data.v_ds = ds::ball_reached(h, data.ds, data.p_ref, 0.05)
+                  ? ds::hitting_velocity(h, data.ds)
+                  : ds::hitting_ds_velocity(h, data.ds, data.p_ref);
+  const double n = data.v_ds.norm();
+  if (!std::isfinite(n)) {
+    data.v_ds.setZero();
+  } else if (n > model.speed_cap()) {
+    data.v_ds *= model.speed_cap() / n;  // end-point speed rule of the mode
+  }
+}
+
+void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
+  const auto& c = model.config();
+  const auto& arm = model.arm();
+  const double dt = c.core_period();
+  TickInfo info;
+
+  const Vector7 q = robot::joint_positions(arm, d);
+  const Vector7 qd = robot::joint_velocities(arm, d);
+
+  // ---- observation ----
+  Observation obs;
+  obs.command = data.pending;
+  data.pending = Command::kNone;
+  obs.request_valid = data.request_valid;
+  obs.perception_fresh = true;  // simulator mode: ball and hole come from the world state
+  bool fault = data.compute_fault || !finite(q) || !finite(qd) || !finite(data.q_ref);
+  if (!fault) {
+    for (int j = 0; j < 7; ++j) {
+      if (q[j] < arm.position_lower()[j] - 0.02 || q[j] > arm.position_upper()[j] + 0.02 ||
+          std::abs(qd[j]) > c.velocity_fault_factor * arm.velocity_limit()[j])
+        fault = true;
+    }
+  }
+  if (data.state == ModuleState::kHitting && data.time_in_state > c.max_hit_duration) fault = true;
+  obs.fault = fault;
+  double qd_max = 0.0;
+  for (int j = 0; j < 7; ++j) qd_max = std::max(qd_max, std::abs(qd[j]));
+  obs.joints_stationary = finite(qd) && qd_max < c.stationary_threshold &&
+                          data.time_in_state >= c.brake_time;
+  obs.at_rest_pose = data.state == ModuleState::kRest && data.at_rest_pose &&
+                     qd_max < c.stationary_threshold;
+  if (data.state == ModuleState::kHitting) {
+    const double* bv = d->qvel + model.ball_dof();
+    const double ball_speed = std::sqrt(bv[0] * bv[0] + bv[1] * bv[1] + bv[2] * bv[2]);
+    if (club_touches_ball(model, d)) data.contact_seen = true;
+    if (data.contact_seen || ball_speed > c.ball_moving_speed) data.ball_hit = true;
+    obs.ball_hit = data.ball_hit;
+    const Eigen::Vector3d psi = direction_of(data.angle);
+    obs.passed_ball = (data.p_ref - model.hitting().x_star()).dot(psi) > c.passed_distance;
+  }
+
+  const Transition tr = next_state(data.state, obs);
+  info.reason = tr.reason;
+  info.fault = fault;
+  if (tr.next != data.state) {
+    enter_state(model, data, tr.next);
+    data.state = tr.next;
+  }
+  // Idle (and a fault with a broken measurement) restart the reference from the measurement.
+  if (data.state == ModuleState::kIdle || !finite(data.q_ref)) {
+    data.q_ref = finite(q) ? q : Vector7::Zero();
+  }
+
+  // ---- desired joint motion ----
+  Vector7 tau = Vector7::Zero();
+  if (!finite(q) || !finite(qd)) {
+    // Nothing to compute torques from: zero torque (the plant's brakes would engage).
+    data.qd_des.setZero();
+    data.qdd_des.setZero();
+  } else if (data.state == ModuleState::kIdle) {
+    if (robot::gravity_torque(arm, q, tau) != robot::RtStatus::kOk) tau.setZero();
+    fir_reset(data.fir, c.fir_length, Vector7::Zero());
+    data.qd_des.setZero();
+    data.qdd_des.setZero();
+    data.integral.setZero();
+  } else {
+    robot::FaceTarget target;
+    if (data.state == ModuleState::kRest) {
+      const Eigen::Vector3d goal = rest_face_position(model, data.angle);
+      data.setpoint = approach(data.setpoint, goal, c.rest_speed * dt);
+      const double dh = wrap_angle(data.angle - data.setpoint_heading);
+      data.setpoint_heading += std::clamp(dh, -c.rest_turn_rate * dt, c.rest_turn_rate * dt);
+      target.position = data.setpoint;
+      target.heading = data.setpoint_heading;
+      const Eigen::Isometry3d face = robot::dh_club_pose(arm, q);
+      const double heading = std::atan2(face.linear()(1, 0), face.linear()(0, 0));
+      data.at_rest_pose = (face.translation() - goal).norm() < c.rest_tolerance &&
+                          std::abs(wrap_angle(heading - data.angle)) < c.rest_heading_tolerance &&
+                          (data.setpoint - goal).norm() < kEps &&
+                          qd_max < c.stationary_threshold;
+    } else if (data.state == ModuleState::kHitting) {
+      // The DS is evaluated at the reference face (FK of q_ref), not at an integrated point: when
+      // a joint saturates, the club just gets there later instead of a set-point running away.
+      const Eigen::Vector3d psi = direction_of(data.angle);
+      const Eigen::Vector3d face_ref = robot::dh_club_pose(arm, data.q_ref).translation();
+      data.p_ref = face_ref + c.club_face_offset * psi;
+      if (data.tick % c.robot_update_divider == 0 || data.time_in_state == 0.0)
+        robot_update(model, data);
+      // Smoothstep ramp-in: the DS asks for full speed at once, the arm starts from rest.
+      const double u = std::min(1.0, data.time_in_state / c.hit_ramp_time);
+      const Eigen::Vector3d v_ref = data.v_ds * (u * u * (3.0 - 2.0 * u));
+      data.v_ref = v_ref;
+      target.position = face_ref + v_ref * dt;
+      target.heading = data.angle;
+      target.velocity.head<3>() = v_ref;
+    } else {  // Braking: the face velocity ramps to zero while the club is lifted
+      const double t = data.time_in_state;
+      const double s = std::max(0.0, 1.0 - t / c.brake_time);
+      Eigen::Vector3d v = data.v_brake0 * s;
+      if (t < c.brake_time)
+        v.z() += c.brake_lift_height * (M_PI / (2.0 * c.brake_time)) * std::sin(M_PI * t / c.brake_time);
+      data.setpoint += v * dt;
+      target.position = data.setpoint;
+      target.heading = data.setpoint_heading;
+      target.velocity.head<3>() = v;
+    }
+    Vector7 qd_ik;
+    info.ik_status = robot::track_face(arm, data.q_ref, target, model.posture(), model.ik(), qd_ik);
+    if (info.ik_status == robot::RtStatus::kInvalidInput) {
+      qd_ik.setZero();
+      if (data.state != ModuleState::kBraking) fault = true;  // brakes on the next tick
+    }
+    const Vector7 qd_prev = data.qd_des;
+    data.qd_des = fir_step(data.fir, qd_ik);
+    data.qdd_des = (data.qd_des - qd_prev) / dt;
+    data.q_ref += data.qd_des * dt;
+
+    // Computed-torque PID: gains in acceleration units, multiplied by M(q) through the RNEA.
+    const Vector7 e = data.q_ref - q;
+    Vector7 a = data.qdd_des;
+    for (int j = 0; j < 7; ++j) {
+      const auto i = static_cast<std::size_t>(j);
+      data.integral[j] = std::clamp(data.integral[j] + e[j] * dt, -c.integral_limit, c.integral_limit);
+      a[j] += c.kp[i] * e[j] + c.ki[i] * data.integral[j] + c.kd[i] * (data.qd_des[j] - qd[j]);
+    }
+    if (robot::inverse_dynamics(arm, q, qd, a, tau) != robot::RtStatus::kOk) {
+      fault = true;
+      if (robot::gravity_torque(arm, q, tau) != robot::RtStatus::kOk) tau.setZero();
+    }
+  }
+
+  data.tau_raw = tau;
+  for (int j = 0; j < 7; ++j) {
+    const double lim = arm.torque_limit()[j];
+    if (!std::isfinite(tau[j])) tau[j] = 0.0;
+    if (std::abs(tau[j]) > lim) info.torque_clamped = true;
+    tau[j] = std::clamp(tau[j], -lim, lim);
+    d->ctrl[arm.actuator_id(j)] = tau[j];
+  }
+  data.tau = tau;
+  info.fault = fault;
+  data.last = info;
+  // A fault found while computing (IK/RNEA) is reported in the next tick's observation.
+  data.compute_fault = fault && !obs.fault;
+  data.time_in_state += dt;
+  ++data.tick;
+}
+
+}  // namespace mg::control

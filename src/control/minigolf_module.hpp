@@ -1,0 +1,147 @@
+#pragma once
+/// The minigolf module (thesis chapter 4): the 500 Hz core update that turns the state machine
+/// (module_state.hpp), the hitting DS and the arm model into joint torques.
+///
+/// Model/Data split: `ModuleModel` is immutable after construction (config, arm, hitting model,
+/// MuJoCo ids); `ModuleData` is the mutable, preallocated per-run state. One Data per thread.
+///
+/// Real-time contract: `core_update` (and the robot update it calls every
+/// `robot_update_divider`-th tick) allocates nothing and never throws; a NaN, a limit breach or a
+/// failed DS/IK evaluation becomes a fault observation, and next_state brakes. `request_hit`,
+/// `request_rest`, `request_idle` are the user update: called between ticks, they may validate
+/// and fail (the hit request is refused, never thrown).
+///
+/// Control law (per core tick of period T = 2 ms):
+///   Idle    tau = g(q) (gravity compensation; the reference follows the measurement)
+///   Rest    a set-point moves toward the rest face pose (speed- and turn-rate-limited); IK
+///   Hitting the DS (robot update, every 5th tick) gives the velocity of the point p = face centre
+///           + offset psi; its reference p_ref is integrated every tick; IK with feed-forward
+///   Braking the reference face velocity ramps to zero over brake_time while the club is lifted
+/// IK = track_face on the reference joint positions q_ref -> qd_ik, FIR low-pass -> qd_des,
+/// q_ref += qd_des T, qdd_des = (qd_des - qd_des_prev) / T, then computed-torque PID:
+///   tau = RNEA(q, qd, qdd_des + kp (q_ref - q) + ki int(q_ref - q) + kd (qd_des - qd)),
+/// clamped to the torque limits.
+#include <array>
+#include <cstdint>
+
+#include <mujoco/mujoco.h>
+
+#include "control/module_config.hpp"
+#include "control/module_state.hpp"
+#include "ds/hitting_ds.hpp"
+#include "ds/hitting_model.hpp"
+#include "robot/arm_model.hpp"
+#include "robot/ik.hpp"
+
+namespace mg::control {
+
+/// Moving-average FIR filter over joint vectors; fixed capacity, no allocation.
+struct FirFilter {
+  static constexpr int kMaxTaps = 32;
+  std::array<robot::Vector7, kMaxTaps> buffer{};
+  robot::Vector7 sum = robot::Vector7::Zero();
+  int taps = 1;
+  int head = 0;
+};
+/// Fills the filter history with `value` (a step-free start). Real-time safe.
+void fir_reset(FirFilter& f, int taps, const robot::Vector7& value);
+/// Pushes `input`, returns the mean of the last `taps` inputs. Real-time safe.
+robot::Vector7 fir_step(FirFilter& f, const robot::Vector7& input);
+
+/// Immutable part of the module.
+class ModuleModel {
+ public:
+  /// `m` must contain the arm (wam_bodies_mjcf) and a geom `ball_geom` (the ball). Validates the
+  /// config; throws mg::InputError if a name is missing.
+  ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::HittingModel hitting,
+              const ModuleConfig& config, int ball_geom, int ball_dof);
+
+  const ModuleConfig& config() const { return config_; }
+  const robot::ArmModel& arm() const { return arm_; }
+  const ds::HittingModel& hitting() const { return hitting_; }
+  const robot::IkOptions& ik() const { return ik_; }
+  int club_geom() const { return club_geom_; }
+  int ball_geom() const { return ball_geom_; }
+  int ball_dof() const { return ball_dof_; }
+  /// [m/s] club speed cap of this mode (speed_max, or kSafeEndpointSpeed in normal mode).
+  double speed_cap() const { return speed_cap_; }
+  const robot::Vector7& posture() const { return posture_; }  ///< [rad] null-space posture (7)
+
+ private:
+  ModuleConfig config_;
+  robot::ArmModel arm_;
+  ds::HittingModel hitting_;
+  robot::IkOptions ik_;
+  robot::Vector7 posture_;
+  int club_geom_ = -1;
+  int ball_geom_ = -1;
+  int ball_dof_ = -1;
+  double speed_cap_ = 3.0;
+};
+
+/// Statistics of one core tick (for tests and the recorder).
+struct TickInfo {
+  Reason reason = Reason::kNoChange;
+  robot::RtStatus ik_status = robot::RtStatus::kOk;
+  bool torque_clamped = false;
+  bool fault = false;
+};
+
+/// Mutable per-run state of the module. Construct with the model (allocates the DS scratch once).
+class ModuleData {
+ public:
+  explicit ModuleData(const ModuleModel& model);
+
+  ModuleState state = ModuleState::kIdle;
+  Command pending = Command::kNone;  ///< user command for the next tick
+  bool request_valid = false;
+  double angle = 0.0;  ///< [rad] commanded hitting angle theta
+  double speed = 0.0;  ///< [m/s] commanded club speed at the ball
+  ds::HittingDsData ds;
+
+  std::int64_t tick = 0;          ///< core ticks since reset
+  double time_in_state = 0.0;     ///< [s]
+  robot::Vector7 q_ref = robot::Vector7::Zero();        ///< [rad] reference joint positions (7)
+  robot::Vector7 qd_des = robot::Vector7::Zero();       ///< [rad/s] filtered desired velocities
+  robot::Vector7 qdd_des = robot::Vector7::Zero();      ///< [rad/s^2]
+  robot::Vector7 integral = robot::Vector7::Zero();     ///< [rad s] PID integral
+  robot::Vector7 tau = robot::Vector7::Zero();          ///< [N m] last command (after the clamp)
+  robot::Vector7 tau_raw = robot::Vector7::Zero();      ///< [N m] before the clamp
+  FirFilter fir;
+
+  Eigen::Vector3d setpoint = Eigen::Vector3d::Zero();  ///< [m, world] face set-point (Rest/Braking)
+  double setpoint_heading = 0.0;                       ///< [rad]
+  Eigen::Vector3d p_ref = Eigen::Vector3d::Zero();     ///< [m, world] DS point reference (Hitting)
+  Eigen::Vector3d v_ds = Eigen::Vector3d::Zero();      ///< [m/s, world] last robot-update DS velocity
+  Eigen::Vector3d v_ref = Eigen::Vector3d::Zero();     ///< [m/s, world] ramped DS velocity (Hitting)
+  Eigen::Vector3d v_brake0 = Eigen::Vector3d::Zero();  ///< [m/s] face reference velocity at braking
+  bool at_rest_pose = false;
+  bool ball_hit = false;       ///< latched during a hit
+  bool contact_seen = false;   ///< club_head-ball contact seen this hit
+  bool compute_fault = false;  ///< IK/RNEA failed last tick: reported as a fault this tick
+  TickInfo last;
+};
+
+/// Resets the data to Idle with the reference at the measured joint positions of `d`.
+void module_reset(const ModuleModel& model, ModuleData& data, const mjData* d);
+
+/// User update (not real-time): ask for the rest pose for hitting angle `angle` [rad].
+/// Returns false (and changes nothing) if the angle is outside the envelope or not finite.
+bool request_rest(const ModuleModel& model, ModuleData& data, double angle);
+/// User update: ask for a hit at `angle` [rad], club speed `speed` [m/s]. A request outside the
+/// envelope (or NaN) is recorded as invalid: next_state refuses it. Returns the validity.
+bool request_hit(const ModuleModel& model, ModuleData& data, double angle, double speed);
+void request_idle(ModuleData& data);
+
+/// The 500 Hz core update: reads q, qd, contacts and the ball from `d`, runs the state machine
+/// and writes the arm's torques into d->ctrl. Real-time safe: no allocation, no throw.
+void core_update(const ModuleModel& model, ModuleData& data, mjData* d);
+
+/// The robot update (every robot_update_divider-th core tick): the DS velocity at p_ref.
+/// Real-time safe.
+void robot_update(const ModuleModel& model, ModuleData& data);
+
+/// [m, world] the club face rest position and [rad] heading for hitting angle `angle`.
+Eigen::Vector3d rest_face_position(const ModuleModel& model, double angle);
+
+}  // namespace mg::control

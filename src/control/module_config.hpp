@@ -1,0 +1,77 @@
+#pragma once
+/// Configuration of the minigolf module (thesis chapter 4): a plain struct with every default in
+/// one place, loaded from YAML once and validated once (`validate()` throws mg::InputError naming
+/// the field). Nothing here is touched by the 500 Hz core update except read-only.
+#include <array>
+#include <filesystem>
+#include <string>
+
+namespace mg::control {
+
+/// Where ball/hole come from and which safety policy applies (ARCHITECTURE.md "Runtime modes").
+enum class ModuleMode {
+  kSimulator,  ///< world state from the simulation; full speed envelope
+  kNormal,     ///< real-arm policy: end-point speed capped at robot::kSafeEndpointSpeed, slower IK
+};
+ModuleMode parse_module_mode(const std::string& name);  ///< "simulator" | "normal"; InputError
+std::string to_string(ModuleMode mode);
+
+struct ModuleConfig {
+  std::string field = "flat";                                  ///< shipped field name or path
+  std::string hitting_model = "data/models/hitting-default.json";  ///< hitting DS model file
+  ModuleMode mode = ModuleMode::kSimulator;
+
+  double core_rate = 500.0;   ///< [Hz] core update rate (physics runs at 1 kHz: 2 steps per tick)
+  int robot_update_divider = 5;  ///< robot update (DS evaluation) every this many core ticks
+
+  /// Computed-torque PID gains per joint, in acceleration units (they are multiplied by M(q)
+  /// through the RNEA): kp [1/s^2], ki [1/s^3], kd [1/s]. Critically damped kd = 2 sqrt(kp).
+  /// ki = 0: the controller's model equals the plant here (no friction); kept for the real arm.
+  std::array<double, 7> kp{400, 400, 400, 400, 400, 400, 400};
+  std::array<double, 7> ki{0, 0, 0, 0, 0, 0, 0};
+  std::array<double, 7> kd{40, 40, 40, 40, 40, 40, 40};
+  double integral_limit = 0.05;  ///< [rad s] anti-windup clamp of the PID integral per joint
+
+  /// Moving-average FIR low-pass on the desired joint velocities (thesis 4.2.2), taps at the core
+  /// rate. 5 taps = 4 ms group delay, first zero at 100 Hz.
+  int fir_length = 5;
+
+  /// Safe envelope of a hit request (thesis 4.3): angle [rad] about +z from psi0, club speed [m/s].
+  double angle_min = -0.6, angle_max = 0.6;
+  double speed_min = 0.3, speed_max = 3.0;
+
+  /// Rest pose of the DS point p (the point one club-face offset ahead of the face centre) relative
+  /// to x*, in the hitting frame R(theta): behind the ball and above it [m].
+  std::array<double, 3> rest_offset{-0.25, 0.0, 0.12};
+  /// [m] p = face centre + offset psi: at impact the face (a plane through the face centre) meets
+  /// the ball's back when p reaches the ball centre x*, so the offset is the ball radius.
+  double club_face_offset = 0.021335;
+  double rest_speed = 0.25;       ///< [m/s] speed of the moving rest set-point
+  double rest_turn_rate = 0.8;    ///< [rad/s] heading rate of the rest set-point
+  double rest_tolerance = 0.003;  ///< [m] face within this of the rest pose counts as there
+  double rest_heading_tolerance = 0.01;  ///< [rad]
+
+  double brake_lift_height = 0.04;  ///< [m] club lifted this much while braking
+  double brake_time = 0.25;         ///< [s] velocity target ramps to zero over this time
+  double stationary_threshold = 0.05;  ///< [rad/s] every joint slower: stationary
+  double ball_moving_speed = 0.05;  ///< [m/s] ball faster than this: it was hit
+  double passed_distance = 0.06;    ///< [m] DS point this far past x* without contact: passed
+  double hit_ramp_time = 0.1;       ///< [s] DS velocity ramped in (smoothstep) from the rest pose
+  double max_hit_duration = 3.0;    ///< [s] a hit longer than this is a fault
+
+  /// Faults: measured joint speed above this fraction of its limit, or a joint outside its range.
+  double velocity_fault_factor = 1.5;
+
+  /// Throws mg::InputError naming the first bad field ("expected X, got Y").
+  void validate() const;
+  /// [s] core period.
+  double core_period() const { return 1.0 / core_rate; }
+};
+
+/// Reads a YAML file; missing keys keep their defaults, unknown keys are an error. Gains may be a
+/// scalar (all joints) or a list of 7. Throws InputError/IoError; the result is validated.
+ModuleConfig load_module_config(const std::filesystem::path& path);
+/// The same from YAML text (`source` names it in messages).
+ModuleConfig parse_module_config(const std::string& yaml_text, const std::string& source);
+
+}  // namespace mg::control

@@ -1,0 +1,143 @@
+// The module in lockstep simulator mode on the flat field: the arm hits the ball.
+#include "control/full_system.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "field/field.hpp"
+
+namespace mg::control {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+struct Rig {
+  sim::World world;
+  ModuleModel model;
+  sim::DataPtr data;
+  Rig()
+      : world(make_world_with_arm(field::load_field("flat"))),
+        model(make_module_model(world,
+                                ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) +
+                                                       "/data/models/hitting-default.json"),
+                                ModuleConfig{})),
+        data(world.make_data()) {}
+  FullPuttResult putt(double angle, double speed) {
+    return full_system_putt(world, model, data.get(), {2.0, 0.0}, angle, speed);
+  }
+};
+
+// One world for the whole suite: building it compiles the MJCF.
+Rig& rig() {
+  static Rig r;
+  return r;
+}
+
+void print(const char* what, double angle, double speed, const FullPuttResult& r) {
+  std::printf(
+      "[%s] cmd (%.3f rad, %.2f m/s): club (%.4f rad, %.3f m/s) launch (%.4f rad, %.3f m/s) "
+      "tau %.2f (raw %.2f) qd %.2f (cmd %.2f) margin %.3f rad, core p99 %.1f us max %.1f us "
+      "overruns %d, %s\n",
+      what, angle, speed, r.club.angle, r.club.speed, r.launch.angle, r.launch.speed,
+      r.max_torque_ratio, r.max_raw_torque_ratio, r.max_velocity_ratio,
+      r.max_command_velocity_ratio, r.min_position_margin, r.timing.core_update_p99_us,
+      r.timing.core_update_max_us, r.timing.overruns, sim::to_string(r.outcome.end).c_str());
+}
+
+TEST(FirFilter, MovingAverageOfTheLastTaps) {
+  FirFilter f;
+  fir_reset(f, 4, robot::Vector7::Zero());
+  robot::Vector7 out;
+  for (int k = 1; k <= 4; ++k) out = fir_step(f, robot::Vector7::Constant(1.0));
+  EXPECT_NEAR(out[0], 1.0, 1e-15);  // a step passes fully after `taps` samples
+  fir_reset(f, 4, robot::Vector7::Zero());
+  EXPECT_NEAR(fir_step(f, robot::Vector7::Constant(1.0))[3], 0.25, 1e-15);
+}
+
+// Launch direction: a systematic bias measured at 0 rad, then every angle within 1 degree of
+// commanded + bias.
+TEST(FullSystem, LaunchAngleWithinOneDegreeAfterBias) {
+  const double speed = 1.0;
+  const auto r0 = rig().putt(0.0, speed);
+  ASSERT_TRUE(r0.hit);
+  print("angle", 0.0, speed, r0);
+  const double bias = r0.launch.angle;
+  EXPECT_LT(std::abs(bias), 2.0 * kDeg) << "bias";
+  for (double a : {-0.15, 0.15}) {
+    const auto r = rig().putt(a, speed);
+    print("angle", a, speed, r);
+    ASSERT_TRUE(r.hit) << a;
+    EXPECT_LT(std::abs(r.launch.angle - a - bias), 1.0 * kDeg) << a;
+    EXPECT_GT(r.launch.speed, 0.5 * speed) << a;
+  }
+}
+
+TEST(FullSystem, LaunchSpeedGrowsWithClubSpeed) {
+  double last_launch = 0.0, last_club = 0.0;
+  for (double v : {0.6, 1.0, 1.4}) {
+    const auto r = rig().putt(0.0, v);
+    print("speed", 0.0, v, r);
+    ASSERT_TRUE(r.hit) << v;
+    EXPECT_GT(r.launch.speed, last_launch) << v;
+    EXPECT_GT(r.club.speed, last_club) << v;
+    EXPECT_NEAR(r.club.speed, v, 0.1 * v) << "club speed at impact vs command";
+    last_launch = r.launch.speed;
+    last_club = r.club.speed;
+  }
+}
+
+TEST(FullSystem, IdenticalPuttsGiveIdenticalBits) {
+  const auto a = rig().putt(0.1, 1.2);
+  const auto b = rig().putt(0.1, 1.2);
+  ASSERT_TRUE(a.hit);
+  EXPECT_EQ(a.outcome.rest_position, b.outcome.rest_position);
+  EXPECT_EQ(a.outcome.steps, b.outcome.steps);
+  EXPECT_EQ(a.outcome.closest_approach, b.outcome.closest_approach);
+  EXPECT_EQ(a.launch.angle, b.launch.angle);
+  EXPECT_EQ(a.launch.speed, b.launch.speed);
+  EXPECT_EQ(a.club.speed, b.club.speed);
+}
+
+// Random requests over the whole safe envelope: the applied torques never exceed the limits (the
+// clamp), joints stay inside their ranges, the commanded velocities inside their limits.
+TEST(FullSystem, LimitsHoldInRandomSweep) {
+  std::mt19937 rng(20261123);
+  const ModuleConfig c;
+  std::uniform_real_distribution<double> angle(c.angle_min, c.angle_max), speed(c.speed_min, c.speed_max);
+  for (int i = 0; i < 6; ++i) {
+    const double a = angle(rng), v = speed(rng);
+    const auto r = rig().putt(a, v);
+    print("sweep", a, v, r);
+    EXPECT_TRUE(r.hit) << a << " " << v;
+    EXPECT_LE(r.max_torque_ratio, 1.0 + 1e-12) << a << " " << v;
+    EXPECT_GT(r.min_position_margin, 0.0) << a << " " << v;
+    EXPECT_LE(r.max_command_velocity_ratio, 1.0 + 1e-9) << a << " " << v;
+    EXPECT_LE(r.max_velocity_ratio, 1.2) << a << " " << v;
+  }
+}
+
+TEST(FullSystem, InvalidRequestsAreRefusedAndNoHitStarts) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (auto [a, v] : {std::pair{0.0, nan}, std::pair{nan, 1.0}, std::pair{0.0, 5.0},
+                      std::pair{0.9, 1.0}}) {
+    const auto r = rig().putt(a, v);
+    EXPECT_TRUE(r.hit_refused) << a << " " << v;
+    EXPECT_FALSE(r.hit) << a << " " << v;
+  }
+}
+
+TEST(FullSystem, CoreUpdateTimingIsMeasured) {
+  const auto r = rig().putt(0.0, 1.0);
+  print("timing", 0.0, 1.0, r);
+  EXPECT_GT(r.timing.ticks, 100);
+  EXPECT_GT(r.timing.core_update_p99_us, 0.0);
+  EXPECT_LE(r.timing.core_update_p99_us, r.timing.core_update_max_us);
+  EXPECT_LT(r.timing.core_update_p99_us, 2000.0) << "p99 over the 2 ms budget";
+}
+
+}  // namespace
+}  // namespace mg::control

@@ -1,0 +1,63 @@
+// Module config: defaults valid, YAML overrides, every bad field named.
+#include "control/module_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+
+namespace mg::control {
+namespace {
+
+TEST(ModuleConfig, DefaultsAreValid) { EXPECT_NO_THROW(ModuleConfig{}.validate()); }
+
+TEST(ModuleConfig, YamlOverridesAndScalarGains) {
+  const auto c = parse_module_config(
+      "field: arctan\nmode: normal\nkp: 100\nkd: [1, 2, 3, 4, 5, 6, 7]\nfir_length: 7\n"
+      "angle_max: 0.5\n",
+      "test");
+  EXPECT_EQ(c.field, "arctan");
+  EXPECT_EQ(c.mode, ModuleMode::kNormal);
+  for (double k : c.kp) EXPECT_EQ(k, 100.0);
+  EXPECT_EQ(c.kd[6], 7.0);
+  EXPECT_EQ(c.fir_length, 7);
+  EXPECT_EQ(c.angle_max, 0.5);
+  EXPECT_EQ(c.speed_max, ModuleConfig{}.speed_max);  // untouched keys keep their defaults
+}
+
+TEST(ModuleConfig, EmptyTextGivesDefaults) {
+  EXPECT_EQ(parse_module_config("", "empty").fir_length, ModuleConfig{}.fir_length);
+}
+
+TEST(ModuleConfig, BadValuesNameTheirField) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"fir_length: 0", "fir_length"},
+      {"fir_length: 99", "fir_length"},
+      {"kp: -1", "kp"},
+      {"kd: [1, 2]", "kd"},
+      {"speed_max: 5", "speed_max"},
+      {"speed_min: .nan", "speed_min"},
+      {"angle_min: 0.3", "angle_min"},
+      {"mode: turbo", "mode"},
+      {"core_rate: 300", "core_rate"},
+      {"rest_offset: [0.1, 0, 0.1]", "rest_offset"},
+      {"brake_time: 0", "brake_time"},
+      {"typo_key: 1", "typo_key"},
+      {"fir_length: many", "fir_length"},
+      {"[1, 2", "YAML"},
+  };
+  for (const auto& [text, field] : cases) {
+    try {
+      parse_module_config(text, "cfg");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(ModuleConfig, MissingFileIsAnIoError) {
+  EXPECT_THROW(load_module_config("/nonexistent/module.yaml"), IoError);
+}
+
+}  // namespace
+}  // namespace mg::control
