@@ -276,14 +276,20 @@ void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
       // a joint saturates, the club just gets there later instead of a set-point running away.
       const Eigen::Vector3d psi = direction_of(data.angle);
       const Eigen::Vector3d face_ref = robot::dh_club_pose(arm, data.q_ref).translation();
-      data.p_ref = face_ref + c.club_face_offset * psi;
+      const Eigen::Vector3d p_kin = face_ref + c.club_face_offset * psi;
+      // The DS point is integrated (a smooth reference) but kept on a leash to the kinematic
+      // reference: when a joint saturates the club gets there later instead of the set-point
+      // running away.
+      const Eigen::Vector3d lead = data.p_ref - p_kin;
+      if (lead.norm() > c.reference_leash) data.p_ref = p_kin + lead * (c.reference_leash / lead.norm());
       if (data.tick % c.robot_update_divider == 0 || data.time_in_state == 0.0)
         robot_update(model, data);
       // Smoothstep ramp-in: the DS asks for full speed at once, the arm starts from rest.
       const double u = std::min(1.0, data.time_in_state / c.hit_ramp_time);
       const Eigen::Vector3d v_ref = data.v_ds * (u * u * (3.0 - 2.0 * u));
       data.v_ref = v_ref;
-      target.position = face_ref + v_ref * dt;
+      data.p_ref += v_ref * dt;
+      target.position = data.p_ref - c.club_face_offset * psi;
       target.heading = data.angle;
       target.velocity.head<3>() = v_ref;
     } else {  // Braking: the face velocity ramps to zero while the club is lifted

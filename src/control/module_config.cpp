@@ -77,6 +77,7 @@ void ModuleConfig::validate() const {
   require_finite_positive(ball_moving_speed, "ball_moving_speed");
   require_finite_positive(passed_distance, "passed_distance");
   require_finite_positive(max_hit_duration, "max_hit_duration");
+  require_finite_positive(reference_leash, "reference_leash");
   require(std::isfinite(hit_ramp_time) && hit_ramp_time > 0.0 && hit_ramp_time <= 1.0,
           "hit_ramp_time", "0..1 s", hit_ramp_time);
   require(std::isfinite(velocity_fault_factor) && velocity_fault_factor >= 1.0,
@@ -114,7 +115,8 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
       "integral_limit", "fir_length", "angle_min", "angle_max", "speed_min", "speed_max",
       "rest_offset", "club_face_offset", "rest_speed", "rest_turn_rate", "rest_tolerance",
       "rest_heading_tolerance", "brake_lift_height", "brake_time", "stationary_threshold",
-      "ball_moving_speed", "passed_distance", "max_hit_duration", "hit_ramp_time", "velocity_fault_factor"};
+      "ball_moving_speed", "passed_distance", "max_hit_duration", "hit_ramp_time", "reference_leash",
+      "velocity_fault_factor"};
   std::string key;
   try {
     for (const auto& kv : root) {
@@ -154,6 +156,7 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
       else if (key == "passed_distance") num(c.passed_distance);
       else if (key == "max_hit_duration") num(c.max_hit_duration);
       else if (key == "hit_ramp_time") num(c.hit_ramp_time);
+      else if (key == "reference_leash") num(c.reference_leash);
       else if (key == "velocity_fault_factor") num(c.velocity_fault_factor);
     }
   } catch (const YAML::Exception& e) {

@@ -56,6 +56,8 @@ struct ModuleConfig {
   double stationary_threshold = 0.05;  ///< [rad/s] every joint slower: stationary
   double ball_moving_speed = 0.05;  ///< [m/s] ball faster than this: it was hit
   double passed_distance = 0.06;    ///< [m] DS point this far past x* without contact: passed
+  /// [m] the integrated DS reference may lead the kinematic reference by at most this much.
+  double reference_leash = 0.005;
   double hit_ramp_time = 0.1;       ///< [s] DS velocity ramped in (smoothstep) from the rest pose
   double max_hit_duration = 3.0;    ///< [s] a hit longer than this is a fault
 

@@ -1,0 +1,126 @@
+// The module's core update without the putt driver: no allocation, faults brake, the state
+// machine's order Idle -> Rest -> Hitting -> Braking -> Idle.
+#include "control/minigolf_module.hpp"
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <new>
+
+#include <gtest/gtest.h>
+
+#include "control/full_system.hpp"
+#include "field/field.hpp"
+
+// Counts heap allocations so the real-time claim of core_update is tested, not assumed.
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+void* operator new(std::size_t n) {
+  ++g_allocations;
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace mg::control {
+namespace {
+
+struct Bench {
+  sim::World world{make_world_with_arm(field::load_field("flat"))};
+  ModuleModel model{make_module_model(
+      world,
+      ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) + "/data/models/hitting-default.json"),
+      ModuleConfig{})};
+  sim::DataPtr data{world.make_data()};
+  ModuleData md{model};
+
+  Bench() {
+    mjData* d = data.get();
+    world.reset(d);
+    robot::Vector7 q;
+    for (int j = 0; j < 7; ++j) q[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
+    robot::set_joint_positions(model.arm(), d, q);
+    mj_forward(world.model(), d);
+    module_reset(model, md, d);
+  }
+  /// One core tick and two physics steps; returns the allocations made inside core_update.
+  long tick() {
+    const long before = g_allocations.load();
+    core_update(model, md, data.get());
+    const long made = g_allocations.load() - before;
+    world.step(data.get());
+    world.step(data.get());
+    return made;
+  }
+  /// Ticks until `done` or `max_ticks`; returns allocations inside core_update.
+  template <class Done>
+  long run_until(Done done, int max_ticks) {
+    long allocations = 0;
+    for (int i = 0; i < max_ticks && !done(); ++i) allocations += tick();
+    return allocations;
+  }
+};
+
+TEST(MinigolfModule, WholeHitCycleWithoutAllocation) {
+  Bench b;
+  long allocations = 0;
+  ASSERT_TRUE(request_rest(b.model, b.md, 0.1));
+  allocations += b.run_until([&] { return b.md.state == ModuleState::kRest && b.md.at_rest_pose; }, 3000);
+  ASSERT_TRUE(b.md.at_rest_pose);
+  ASSERT_TRUE(request_hit(b.model, b.md, 0.1, 1.0));
+  allocations += b.tick();
+  EXPECT_EQ(b.md.state, ModuleState::kHitting);
+  allocations += b.run_until([&] { return b.md.state != ModuleState::kHitting; }, 1500);
+  EXPECT_EQ(b.md.state, ModuleState::kBraking);
+  EXPECT_EQ(b.md.last.reason, Reason::kBallHit);
+  allocations += b.run_until([&] { return b.md.state == ModuleState::kIdle; }, 1500);
+  EXPECT_EQ(b.md.state, ModuleState::kIdle);
+  EXPECT_EQ(allocations, 0);
+  for (int j = 0; j < 7; ++j) EXPECT_TRUE(std::isfinite(b.md.tau[j]));
+}
+
+TEST(MinigolfModule, NanMeasurementDuringHitBrakesWithFiniteTorques) {
+  Bench b;
+  ASSERT_TRUE(request_rest(b.model, b.md, 0.0));
+  b.run_until([&] { return b.md.at_rest_pose; }, 3000);
+  ASSERT_TRUE(request_hit(b.model, b.md, 0.0, 1.0));
+  for (int i = 0; i < 20; ++i) b.tick();
+  ASSERT_EQ(b.md.state, ModuleState::kHitting);
+  b.data->qvel[b.model.arm().dof_address(3)] = std::numeric_limits<double>::quiet_NaN();
+  core_update(b.model, b.md, b.data.get());
+  EXPECT_EQ(b.md.state, ModuleState::kBraking);
+  EXPECT_EQ(b.md.last.reason, Reason::kFault);
+  for (int j = 0; j < 7; ++j) {
+    const double u = b.data->ctrl[b.model.arm().actuator_id(j)];
+    EXPECT_TRUE(std::isfinite(u)) << j;
+    EXPECT_LE(std::abs(u), b.model.arm().torque_limit()[j]) << j;
+  }
+}
+
+TEST(MinigolfModule, HitRefusedUnlessAtRest) {
+  Bench b;
+  ASSERT_TRUE(request_rest(b.model, b.md, 0.0));
+  b.tick();
+  ASSERT_EQ(b.md.state, ModuleState::kRest);
+  request_hit(b.model, b.md, 0.0, 1.0);  // the arm has not reached the rest pose of angle 0 yet
+  b.tick();
+  EXPECT_EQ(b.md.state, ModuleState::kRest);
+  EXPECT_EQ(b.md.last.reason, Reason::kHitRefusedNotAtRest);
+}
+
+TEST(MinigolfModule, RestPoseIsBehindTheBallAlongTheHittingDirection) {
+  Bench b;
+  for (double a : {-0.5, 0.0, 0.3}) {
+    const Eigen::Vector3d rest = rest_face_position(b.model, a);
+    const Eigen::Vector3d psi(std::cos(a), std::sin(a), 0.0);
+    const Eigen::Vector3d rel = rest - b.model.hitting().x_star();
+    EXPECT_LT(rel.dot(psi), -0.1) << a;                       // behind the ball
+    EXPECT_NEAR((rel - rel.dot(psi) * psi).head<2>().norm(), 0.0, 1e-12) << a;  // on the line
+  }
+}
+
+}  // namespace
+}  // namespace mg::control
