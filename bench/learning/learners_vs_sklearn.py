@@ -16,7 +16,7 @@ defaults) which reports the in-process fit time, like sklearn's `fit()` time; pr
 `minigolf predict` on the model file it wrote. With --ours-args the model is trained by
 `minigolf train ARGS` instead and the time is that of the whole process (start-up included).
 
-Usage: /usr/bin/python3 bench/learning/learners_vs_sklearn.py [--binary build-learning/src/cli/minigolf]
+Usage: /usr/bin/python3 bench/learning/learners_vs_sklearn.py [--binary build/src/cli/minigolf]
        [--sizes 10,20,30,50] [--seeds 5] [--restarts 10]
 """
 import argparse
@@ -144,8 +144,8 @@ def ours(binary, fit_binary, method, train_csv, query_csv, model, k, restarts, s
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--binary", default=os.path.join(here, "..", "..", "build-learning", "src", "cli", "minigolf"))
-    ap.add_argument("--fit-binary", default=os.path.join(here, "..", "..", "build-learning", "bench", "learning",
+    ap.add_argument("--binary", default=os.path.join(here, "..", "..", "build", "src", "cli", "minigolf"))
+    ap.add_argument("--fit-binary", default=os.path.join(here, "..", "..", "build", "bench", "learning",
                                                          "bench_learning_fit"))
     ap.add_argument("--sizes", default="10,20,30,50")
     ap.add_argument("--seeds", type=int, default=5)
