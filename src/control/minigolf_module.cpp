@@ -42,8 +42,10 @@ ModuleModel::ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::Hit
   ball_dof_ = ball_dof;
   ik_.dt = config_.core_period();
   speed_cap_ = config_.speed_max;
+  dynamic_cap_ = std::min(config_.speed_max, config_.arm_speed_cap);
   if (config_.mode == ModuleMode::kNormal) {
     speed_cap_ = std::min(speed_cap_, robot::kSafeEndpointSpeed);
+    dynamic_cap_ = std::min(dynamic_cap_, speed_cap_);
     ik_.velocity_scale = 0.5;
   }
   ik_.validate();
@@ -186,8 +188,8 @@ void robot_update(const ModuleModel& model, ModuleData& data) {
   const double n = data.v_ds.norm();
   if (!std::isfinite(n)) {
     data.v_ds.setZero();
-  } else if (n > model.speed_cap()) {
-    data.v_ds *= model.speed_cap() / n;  // end-point speed rule of the mode
+  } else if (n > model.club_speed_cap()) {
+    data.v_ds *= model.club_speed_cap() / n;  // what the arm can track / the mode's speed rule
   }
 }
 

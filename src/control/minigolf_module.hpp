@@ -65,6 +65,8 @@ class ModuleModel {
   int ball_dof() const { return ball_dof_; }
   /// [m/s] club speed cap of this mode (speed_max, or kSafeEndpointSpeed in normal mode).
   double speed_cap() const { return speed_cap_; }
+  /// [m/s] the most the DS velocity may ask of the club (arm_speed_cap, and the mode's cap).
+  double club_speed_cap() const { return dynamic_cap_; }
   const robot::Vector7& posture() const { return posture_; }  ///< [rad] null-space posture (7)
 
  private:
@@ -77,6 +79,7 @@ class ModuleModel {
   int ball_geom_ = -1;
   int ball_dof_ = -1;
   double speed_cap_ = 3.0;
+  double dynamic_cap_ = 3.0;
 };
 
 /// Statistics of one core tick (for tests and the recorder).

@@ -39,6 +39,10 @@ struct ModuleConfig {
   /// Safe envelope of a hit request (thesis 4.3): angle [rad] about +z from psi0, club speed [m/s].
   double angle_min = -0.6, angle_max = 0.6;
   double speed_min = 0.3, speed_max = 3.0;
+  /// [m/s] what the DS may ask of the club in simulator mode: the default arm's joint velocity
+  /// limits bend the path above ~1.4 m/s (notes/control.md), so faster requests hit at this speed
+  /// along the right direction instead of off-centre.
+  double arm_speed_cap = 1.3;
 
   /// Rest pose of the DS point p (the point one club-face offset ahead of the face centre) relative
   /// to x*, in the hitting frame R(theta): behind the ball and above it [m].

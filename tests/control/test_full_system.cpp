@@ -78,7 +78,7 @@ TEST(FullSystem, LaunchAngleWithinOneDegreeAfterBias) {
 
 TEST(FullSystem, LaunchSpeedGrowsWithClubSpeed) {
   double last_launch = 0.0, last_club = 0.0;
-  for (double v : {0.6, 1.0, 1.4}) {
+  for (double v : {0.5, 0.8, 1.1}) {
     const auto r = rig().putt(0.0, v);
     print("speed", 0.0, v, r);
     ASSERT_TRUE(r.hit) << v;
@@ -100,6 +100,17 @@ TEST(FullSystem, IdenticalPuttsGiveIdenticalBits) {
   EXPECT_EQ(a.launch.angle, b.launch.angle);
   EXPECT_EQ(a.launch.speed, b.launch.speed);
   EXPECT_EQ(a.club.speed, b.club.speed);
+}
+
+// Faster requests than the arm can track hit at the arm's speed cap, still along theta.
+TEST(FullSystem, RequestsAboveTheArmCapHitAtTheCapAlongTheAngle) {
+  const double cap = rig().model.club_speed_cap();
+  const auto r = rig().putt(0.1, 2.5);
+  print("cap", 0.1, 2.5, r);
+  ASSERT_TRUE(r.hit);
+  EXPECT_LE(r.club.speed, 1.05 * cap);
+  EXPECT_GT(r.club.speed, 0.9 * cap);
+  EXPECT_LT(std::abs(r.launch.angle - 0.1), 2.0 * kDeg);
 }
 
 // Random requests over the whole safe envelope: the applied torques never exceed the limits (the
