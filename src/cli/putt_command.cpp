@@ -1,4 +1,5 @@
-// putt --field F --hole X,Y --angle RAD --speed M/S [--ball-only] [--hitting-model FILE] [--json]
+// putt --field F --hole X,Y --angle RAD --speed M/S [--ball-only] [--hitting-model FILE]
+//      [--config FILE] [--json]
 //      [--trajectory FILE]
 // Without --ball-only the simulated WAM hits the ball (control/full_system.hpp); --angle and --speed
 // are then the hitting angle and the club speed at the ball.
@@ -24,8 +25,10 @@ namespace {
 // The arm hits the ball: the module runs in lockstep simulator mode.
 void run_full_system_putt(const std::string& field_name, const std::string& hole_text,
                           double angle, double speed, double max_duration,
-                          const std::string& model_path, bool json) {
-  control::ModuleConfig config;
+                          const std::string& model_path, const std::string& config_path,
+                          bool json) {
+  control::ModuleConfig config =
+      config_path.empty() ? control::ModuleConfig{} : control::load_module_config(config_path);
   config.field = field_name;
   if (!model_path.empty()) config.hitting_model = model_path;
   config.validate();
@@ -37,9 +40,11 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
                                  config.speed_min, config.speed_max, speed));
   if (!std::isfinite(max_duration) || max_duration <= 0.0)
     throw InputError(fmt::format("putt: --max-duration: expected > 0 s, got {}", max_duration));
-  const std::filesystem::path model_file = model_path.empty()
-                                               ? data_dir() / "models" / "hitting-default.json"
-                                               : std::filesystem::path(model_path);
+  // --hitting-model, else the config file's, else the shipped default.
+  const std::filesystem::path model_file =
+      !model_path.empty()   ? std::filesystem::path(model_path)
+      : !config_path.empty() ? std::filesystem::path(config.hitting_model)
+                             : data_dir() / "models" / "hitting-default.json";
   const sim::World world = control::make_world_with_arm(field::load_field(field_name));
   const auto hole = hole_text.empty() ? world.field().hole.position : parse_vector<2>("--hole", hole_text);
   field::check_hole_position(world.field(), hole);
@@ -97,6 +102,7 @@ void add_putt_command(CLI::App& app) {
     bool json = false;
     std::string trajectory;
     std::string hitting_model;
+    std::string config;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("putt", "Simulate one putt and report the outcome");
@@ -113,10 +119,12 @@ void add_putt_command(CLI::App& app) {
                   "Write the ball trajectory to this CSV file (--ball-only)");
   cmd->add_option("--hitting-model", o->hitting_model,
                   "Hitting DS model file (default: data/models/hitting-default.json)");
+  cmd->add_option("--config", o->config,
+                  "Module config YAML (gains, envelope, ...; see notes/control.md)");
   cmd->callback([o] {
     if (!o->ball_only) {
       run_full_system_putt(o->field, o->hole, o->angle, o->speed, o->max_duration,
-                           o->hitting_model, o->json);
+                           o->hitting_model, o->config, o->json);
       return;
     }
     sim::PuttRequest request;
