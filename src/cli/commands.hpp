@@ -8,5 +8,6 @@ void add_field_commands(CLI::App& app);     // field list | field show
 void add_putt_command(CLI::App& app);       // putt
 void add_learning_commands(CLI::App& app);  // train | predict | validate
 void add_ds_commands(CLI::App& app);        // ds fit | ds check | ds rollout
+void add_vision_commands(CLI::App& app);    // vision-sim
 
 }  // namespace mg::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   mg::cli::add_putt_command(app);
   mg::cli::add_learning_commands(app);
   mg::cli::add_ds_commands(app);
+  mg::cli::add_vision_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,56 @@
+#pragma once
+/// Where the control module gets ball and hole positions: from the simulator (simulation mode)
+/// or from the stereo-vision feed over the network (normal mode, thesis 4.2.1).
+///
+/// Both sources answer `perceive(now)` the same way, never throw, and say whether the answer is
+/// fresh enough to act on; the control module decides what to do with a stale answer (hold,
+/// never hit).
+#include <array>
+#include <limits>
+
+#include "perception/vision_feed.hpp"
+#include "sim/world.hpp"
+
+namespace mg::perception {
+
+/// What a perception source knows at one instant.
+struct Perceived {
+  bool fresh = false;                   ///< safe to act on (see each source)
+  std::array<double, 3> ball{0, 0, 0};  ///< ball centre [m], world frame
+  std::array<double, 3> hole{0, 0, 0};  ///< hole centre on the surface [m], world frame
+  /// [s] since the positions were observed; infinity when nothing was ever observed.
+  double age = std::numeric_limits<double>::infinity();
+};
+
+class Perception {
+ public:
+  virtual ~Perception() = default;
+  /// The current ball and hole at `now` [s, caller's monotonic clock]. Never throws.
+  virtual Perceived perceive(double now) noexcept = 0;
+};
+
+/// Ground truth from a running simulation: always fresh, age 0. Holds references: `world` and
+/// `data` must outlive it. Real-time safe (no allocation).
+class SimulatorPerception final : public Perception {
+ public:
+  SimulatorPerception(const sim::World& world, const mjData* data) : world_(&world), data_(data) {}
+  Perceived perceive(double now) noexcept override;
+
+ private:
+  const sim::World* world_;
+  const mjData* data_;
+};
+
+/// The network vision feed: polls it (draining pending datagrams), then reports its latest
+/// message. Fresh while the last accepted message arrived less than `max_age` ago. Holds a
+/// reference: `feed` must outlive it.
+class NetworkPerception final : public Perception {
+ public:
+  explicit NetworkPerception(VisionFeed& feed) : feed_(&feed) {}
+  Perceived perceive(double now) noexcept override;
+
+ private:
+  VisionFeed* feed_;
+};
+
+}  // namespace mg::perception
