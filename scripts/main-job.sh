@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The main job (for now): a demonstration putt on each shipped field, ball only, with the
-# outcome printed and the trajectories drawn over the fields in out/demo/fields.png.
+# The main job (for now): demonstration putts on each shipped field (ball only), two putts
+# hit by the simulated arm, outcomes printed, trajectories drawn in out/demo/fields.png.
 # The launch parameters below are example inputs; what happens is simulated when this runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,6 +31,10 @@ for p in "${putts[@]}"; do
   $bin putt --ball-only --field "$field" --angle "$angle" --speed "$speed"
   i=$((i + 1))
 done
+echo "== the arm hits (full system, fast lockstep mode, hole moved within the arm's reach)"
+$bin putt --field flat --hole 0.62,0 --angle 0 --speed 1.2
+$bin putt --field flat --hole 0.55,0.1 --angle 0.18 --speed 1.2
+$bin putt --field flat --hole 0.62,0 --angle 0 --speed 1.2 --json >"$out/arm_putt_flat.json"
 for field in flat multiple-hills regular-hill arctan; do
   $bin field heights "$field" -o "$out/heights_${field}.csv" --cell 0.02
   $bin field show "$field" --json >"$out/field_${field}.json"
