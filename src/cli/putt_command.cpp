@@ -22,6 +22,23 @@
 namespace mg::cli {
 namespace {
 
+// The keys shared by the ball-only and the full-system putt.
+nlohmann::json outcome_json(const std::string& field, std::array<double, 2> hole, double angle,
+                            double speed, const sim::PuttOutcome& out) {
+  return {
+      {"field", field},
+      {"hole", hole},
+      {"angle", angle},
+      {"speed", speed},
+      {"sunk", out.sunk},
+      {"end", sim::to_string(out.end)},
+      {"rest_position", out.rest_position},
+      {"closest_approach", out.closest_approach},
+      {"duration", out.duration},
+      {"steps", out.steps},
+  };
+}
+
 // The arm hits the ball: the module runs in lockstep simulator mode.
 void run_full_system_putt(const std::string& field_name, const std::string& hole_text,
                           double angle, double speed, double max_duration,
@@ -59,24 +76,12 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
   if (!r.hit) throw NumericalError("putt: the club did not reach the ball");
   const sim::PuttOutcome& out = r.outcome;
   if (json) {
-    const nlohmann::json j = {
-        {"field", world.field().name},
-        {"hole", hole},
-        {"angle", angle},
-        {"speed", speed},
-        {"sunk", out.sunk},
-        {"end", sim::to_string(out.end)},
-        {"rest_position", out.rest_position},
-        {"closest_approach", out.closest_approach},
-        {"duration", out.duration},
-        {"steps", out.steps},
-        {"club", {{"angle", r.club.angle}, {"speed", r.club.speed}}},
-        {"launch", {{"angle", r.launch.angle}, {"speed", r.launch.speed}}},
-        {"timing",
-         {{"core_update_p99_us", r.timing.core_update_p99_us},
-          {"core_update_max_us", r.timing.core_update_max_us},
-          {"overruns", r.timing.overruns}}},
-    };
+    nlohmann::json j = outcome_json(world.field().name, hole, angle, speed, out);
+    j["club"] = {{"angle", r.club.angle}, {"speed", r.club.speed}};
+    j["launch"] = {{"angle", r.launch.angle}, {"speed", r.launch.speed}};
+    j["timing"] = {{"core_update_p99_us", r.timing.core_update_p99_us},
+                   {"core_update_max_us", r.timing.core_update_max_us},
+                   {"overruns", r.timing.overruns}};
     fmt::print("{}\n", j.dump());
   } else {
     fmt::print("{} on {} (arm): angle {:.4f} rad, club {:.3f} m/s -> launch {:.4f} rad, {:.3f} m/s; "
@@ -146,18 +151,7 @@ void add_putt_command(CLI::App& app) {
       write_file_atomic(o->trajectory, format_csv({"t", "x", "y", "z", "vx", "vy", "vz"}, rows));
     }
     if (o->json) {
-      const nlohmann::json j = {
-          {"field", world.field().name},
-          {"hole", hole},
-          {"angle", o->angle},
-          {"speed", o->speed},
-          {"sunk", out.sunk},
-          {"end", sim::to_string(out.end)},
-          {"rest_position", out.rest_position},
-          {"closest_approach", out.closest_approach},
-          {"duration", out.duration},
-          {"steps", out.steps},
-      };
+      const nlohmann::json j = outcome_json(world.field().name, hole, o->angle, o->speed, out);
       fmt::print("{}\n", j.dump());
     } else {
       fmt::print("{} on {}: angle {:.4f} rad, speed {:.3f} m/s -> {} after {:.2f} s; rest ({:.3f}, "
