@@ -9,6 +9,7 @@ packages=(
   libcli11-dev libfmt-dev libspdlog-dev libpng-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-numpy python3-sklearn python3-matplotlib
+  valgrind  # bench/sim/putt_overhead.sh counts instructions with callgrind
 )
 
 missing=()
