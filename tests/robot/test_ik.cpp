@@ -206,6 +206,30 @@ TEST_F(WamIk, VelocityIkRespectsJointBounds) {
   EXPECT_GT(saturated, 0);  // the bounds were actually exercised
 }
 
+// The joint velocity limits are sized for a putt (notes/robot.md): at the impact posture of
+// hitting angles 0..0.6 rad the IK produces a 2.5 m/s face velocity along the hitting direction,
+// heading held, without a joint reaching its velocity bound (the old 2-3 rad/s limits could not).
+TEST_F(WamIk, VelocityLimitsAdmitAPuttAtTwoAndAHalfMetresPerSecond) {
+  const IkOptions options;
+  for (double theta : {0.0, 0.3, 0.6}) {
+    const Eigen::Vector3d psi(std::cos(theta), std::sin(theta), 0.0);
+    FaceTarget t;
+    t.position = Eigen::Vector3d(0.0, 0.0, 0.02135) - 0.021335 * psi;  // face touching the ball
+    t.heading = theta;
+    const IkResult r = solve_ik(*arm_, t, rest_posture(), rest_posture());
+    ASSERT_TRUE(r.converged) << theta;
+    Eigen::Isometry3d pose;
+    Matrix67 jac;
+    dh_club_jacobian(*arm_, r.q, pose, jac);
+    Vector6 v = Vector6::Zero();
+    v.head<3>() = 2.5 * psi;
+    Vector7 qd;
+    EXPECT_EQ(velocity_ik(*arm_, r.q, jac, v, Vector7::Zero(), options, qd), RtStatus::kOk) << theta;
+    EXPECT_LT((jac * qd - v).norm() / v.norm(), 0.01) << theta;
+    EXPECT_LT(qd.cwiseAbs().cwiseQuotient(arm_->velocity_limit()).maxCoeff(), 0.9) << theta;
+  }
+}
+
 // At a limit the IK still does the best it can with the other joints.
 TEST_F(WamIk, ALockedJointIsTakenOutOfTheTask) {
   Vector7 q = rest_posture();
