@@ -9,5 +9,7 @@ void add_putt_command(CLI::App& app);       // putt
 void add_learning_commands(CLI::App& app);  // train | predict | validate
 void add_ds_commands(CLI::App& app);        // ds fit | ds check | ds rollout
 void add_vision_commands(CLI::App& app);    // vision-sim
+void add_study_commands(CLI::App& app);     // study launch-error
+void add_console_command(CLI::App& app);    // console
 
 }  // namespace mg::cli

@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   mg::cli::add_learning_commands(app);
   mg::cli::add_ds_commands(app);
   mg::cli::add_vision_commands(app);
+  mg::cli::add_study_commands(app);
+  mg::cli::add_console_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <random>
 
+#include "core/rng.hpp"
 #include "robot/wam_model.hpp"
 
 namespace mg::control {
@@ -22,7 +24,7 @@ ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
 }
 
 LockstepRunner::LockstepRunner(const sim::World& world, const ModuleModel& model, mjData* d)
-    : world_(&world), model_(&model), d_(d), data_(model) {
+    : world_(&world), model_(&model), d_(d), data_(model), truth_(world, d), perception_(&truth_) {
   steps_per_tick_ = static_cast<int>(std::lround(model.config().core_period() / world.model()->opt.timestep));
   steps_per_tick_ = std::max(steps_per_tick_, 1);
   durations_us_.reserve(1 << 16);
@@ -35,8 +37,14 @@ void LockstepRunner::reset_module() {
   steps_ = 0;
 }
 
+void LockstepRunner::set_perception(perception::Perception* perception) {
+  perception_ = perception != nullptr ? perception : &truth_;
+}
+
 void LockstepRunner::step() {
   if (steps_ % steps_per_tick_ == 0) {
+    if (data_.tick % model_->config().robot_update_divider == 0)
+      robot_update(*model_, data_, perception_->perceive(d_->time));
     const auto t0 = std::chrono::steady_clock::now();
     core_update(*model_, data_, d_);
     const auto t1 = std::chrono::steady_clock::now();
@@ -87,6 +95,50 @@ void track_ratios(const ModuleModel& model, const mjData* d, const ModuleData& d
   if (data.last.fault) r.faulted = true;
 }
 
+// --- Execution noise (FullPuttOptions::torque_noise / placement_noise). Disabled at zero: then
+// nothing here touches mjData and the run is bit-identical to a noise-free build.
+class TorqueNoise {
+ public:
+  TorqueNoise(const ModuleModel& model, const mjModel* m, const FullPuttOptions& options)
+      : arm_(&model.arm()),
+        enabled_(options.torque_noise > 0.0),
+        rng_(derive_seed(options.seed, 1)) {
+    steps_per_tick_ = std::max(
+        1, static_cast<int>(std::lround(model.config().core_period() / m->opt.timestep)));
+    for (int j = 0; j < 7; ++j) std_[j] = options.torque_noise * arm_->torque_limit()[j];
+  }
+  /// Before physics step `step` of the runner: on a core tick, a fresh draw per joint replaces
+  /// the previous one in d->qfrc_applied (added to whatever else is applied there).
+  void before_step(long step, mjData* d) {
+    if (!enabled_ || step % steps_per_tick_ != 0) return;
+    for (int j = 0; j < 7; ++j) {
+      const double tau = std_[j] * normal_(rng_);
+      d->qfrc_applied[arm_->dof_address(j)] += tau - last_[j];
+      last_[j] = tau;
+    }
+  }
+
+ private:
+  const robot::ArmModel* arm_;
+  bool enabled_;
+  Rng rng_;
+  std::normal_distribution<double> normal_{0.0, 1.0};
+  int steps_per_tick_ = 2;
+  robot::Vector7 std_ = robot::Vector7::Zero();
+  robot::Vector7 last_ = robot::Vector7::Zero();
+};
+
+/// The tee, plus a Gaussian error of std `placement_noise` per axis (seeded stream 0).
+std::array<double, 2> noisy_ball_start(const sim::World& world, const FullPuttOptions& options) {
+  std::array<double, 2> xy = world.field().tee;
+  if (!(options.placement_noise > 0.0)) return xy;
+  Rng rng(derive_seed(options.seed, 0));
+  std::normal_distribution<double> normal(0.0, options.placement_noise);
+  xy[0] += normal(rng);
+  xy[1] += normal(rng);
+  return xy;
+}
+
 }  // namespace
 
 FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
@@ -94,14 +146,22 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
                                 const FullPuttOptions& options) {
   world.reset(d);
   world.set_hole(d, hole);
+  const std::array<double, 2> ball_start = noisy_ball_start(world, options);
+  if (options.placement_noise > 0.0) world.place_ball(d, ball_start);
   robot::Vector7 rest;
   for (int j = 0; j < 7; ++j) rest[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
   robot::set_joint_positions(model.arm(), d, rest);
   mj_forward(world.model(), d);
 
   FullPuttResult r;
+  r.ball_start = ball_start;
   r.min_position_margin = 1e9;
   LockstepRunner run(world, model, d);
+  TorqueNoise torque_noise(model, world.model(), options);
+  const auto step = [&] {
+    torque_noise.before_step(run.steps(), d);
+    run.step();
+  };
   const double dt = world.model()->opt.timestep;
   const int ball_dof = world.ids().ball_dof;
 
@@ -114,7 +174,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   const long settle_steps = std::lround(options.settle_timeout / dt);
   bool settled = false;
   for (long k = 0; k < settle_steps; ++k) {
-    run.step();
+    step();
     track_ratios(model, d, run.module(), r);
     // Ask once the module says the rest pose is reached (on a core-tick boundary).
     if (run.module().state == ModuleState::kRest && run.module().at_rest_pose && k % 2 == 1 &&
@@ -130,14 +190,33 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   }
 
   // Hit.
-  request_hit(model, run.module(), angle, speed);
+  const bool request_valid = request_hit(model, run.module(), angle, speed);
   const long hit_steps = std::lround(options.hit_timeout / dt);
-  const double t_request = d->time;
+  double t_request = d->time;
   bool contact = false;
   for (long k = 0; k < hit_steps && !contact; ++k) {
-    run.step();
+    step();
     track_ratios(model, d, run.module(), r);
     if (k == 2 && run.module().state != ModuleState::kHitting) {
+      // Execution noise only: the torque disturbance makes the arm jitter around the
+      // stationarity threshold, so a valid request can be refused as "not at rest" at the next
+      // tick. Wait for the rest pose again and repeat the request, until settle_timeout.
+      if (options.torque_noise > 0.0 && request_valid &&
+          run.module().state == ModuleState::kRest) {
+        bool again = false;
+        while (!again && d->time < options.settle_timeout) {
+          step();
+          track_ratios(model, d, run.module(), r);
+          again = run.module().state == ModuleState::kRest && run.module().at_rest_pose &&
+                  run.steps() % 2 == 0;
+        }
+        if (again) {
+          request_hit(model, run.module(), angle, speed);
+          r.rest_time = t_request = d->time;
+          k = -1;
+          continue;
+        }
+      }
       r.hit_refused = true;
       break;
     }
@@ -174,7 +253,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   const double t_contact = d->time;
   long k = 1;
   for (; k <= max_steps && !decided; ++k) {
-    run.step();
+    step();
     track_ratios(model, d, run.module(), r);
     decided = tracker.update(d);
     if (k == launch_step) {

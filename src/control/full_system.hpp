@@ -4,6 +4,7 @@
 /// tick; user requests are made between ticks. Deterministic: the same world, inputs and config
 /// give the same bits (wall-clock timing is measured but never fed back).
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "control/minigolf_module.hpp"
@@ -32,9 +33,14 @@ struct CoreTiming {
 /// One thread, lockstep: physics and module on the same clock.
 class LockstepRunner {
  public:
+  /// Perception defaults to the simulator's ground truth (simulator mode).
   LockstepRunner(const sim::World& world, const ModuleModel& model, mjData* d);
-  /// One physics step; before it, the core update if the step count is a multiple of the core
-  /// period in steps. Records the core update's wall time.
+  /// Uses `perception` (not owned; must outlive the runner) for the robot update, e.g. the
+  /// network feed in normal mode; its clock is the simulated time d->time. nullptr: ground truth.
+  void set_perception(perception::Perception* perception);
+  /// One physics step; before it, on a core tick, the robot update (every robot_update_divider-th
+  /// tick, with the perception at d->time) and the core update. Records the core update's wall
+  /// time.
   void step();
   /// Resets the module to Idle at the current arm state of d and clears timing.
   void reset_module();
@@ -48,6 +54,8 @@ class LockstepRunner {
   const ModuleModel* model_;
   mjData* d_;
   ModuleData data_;
+  perception::SimulatorPerception truth_;
+  perception::Perception* perception_;
   int steps_per_tick_ = 2;
   long steps_ = 0;
   std::vector<float> durations_us_;  // reserved up front; grows only past the reservation
@@ -59,6 +67,16 @@ struct FullPuttOptions {
   double max_duration = 30.0;     ///< [s] ball roll after the hit
   double launch_delay = 0.02;     ///< [s] after the first contact, when the launch is measured
   sim::OutcomeRules rules{};
+
+  // --- Execution noise (launch study, thesis 6.1). Zero noise: the run is unchanged, bit for bit.
+  /// Std of a Gaussian joint-torque disturbance, as a fraction of each joint's torque limit; a
+  /// fresh draw per joint every core tick, added to the plant (d->qfrc_applied at the arm's dofs,
+  /// after the controller's clamp) for the whole run (rest, hit, roll). [-]
+  double torque_noise = 0.0;
+  /// Std of the ball's placement error around the tee, per horizontal axis. [m]
+  double placement_noise = 0.0;
+  /// Seed of the noise (mg::Rng; placement and torque use derive_seed(seed, 0) and (seed, 1)).
+  std::uint64_t seed = 0;
 };
 
 /// Angle [rad] (atan2 of the horizontal components) and speed [m/s] of a velocity.
@@ -69,6 +87,7 @@ struct AngleSpeed {
 
 struct FullPuttResult {
   bool hit = false;                 ///< the club struck the ball
+  std::array<double, 2> ball_start{0.0, 0.0};  ///< [m] where the ball was placed (tee + noise)
   bool hit_refused = false;         ///< the module refused the request (envelope, NaN)
   sim::PuttOutcome outcome;  ///< the ball's outcome; duration [s] and steps count from first contact
   AngleSpeed club;                  ///< club face velocity at first contact (speed: 3-D norm)

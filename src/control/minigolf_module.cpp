@@ -136,7 +136,10 @@ void module_reset(const ModuleModel& model, ModuleData& data, const mjData* d) {
   data.ball_hit = false;
   data.contact_seen = false;
   data.compute_fault = false;
+  data.overrun_fault = false;
   data.v_ds.setZero();
+  data.seen = {};
+  data.seen_tick = -1;
   data.last = {};
 }
 
@@ -151,6 +154,7 @@ Eigen::Vector3d rest_face_position(const ModuleModel& model, double angle) {
 bool request_rest(const ModuleModel& model, ModuleData& data, double angle) {
   const auto& c = model.config();
   if (!std::isfinite(angle) || angle < c.angle_min || angle > c.angle_max) return false;
+  if (angle != data.angle) data.at_rest_pose = false;  // a new target: not there yet
   data.angle = angle;
   data.pending = Command::kRest;
   return true;
@@ -179,7 +183,12 @@ bool request_hit(const ModuleModel& model, ModuleData& data, double angle, doubl
 
 void request_idle(ModuleData& data) { data.pending = Command::kIdle; }
 
-void robot_update(const ModuleModel& model, ModuleData& data) {
+void robot_update(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen) {
+  data.seen = seen;
+  // Age counts from the observation, not from this update.
+  if (seen.fresh)
+    data.seen_tick = data.tick - std::llround(std::max(0.0, seen.age) / model.config().core_period());
+  if (data.state != ModuleState::kHitting) return;
   const auto& h = model.hitting();
   // Past the hitting plane the DS keeps commanding the hitting velocity (notes/ds.md).
   data.v_ds = ds::ball_reached(h, data.ds, data.p_ref, 0.05)
@@ -191,6 +200,18 @@ void robot_update(const ModuleModel& model, ModuleData& data) {
   } else if (n > model.club_speed_cap()) {
     data.v_ds *= model.club_speed_cap() / n;  // what the arm can track / the mode's speed rule
   }
+}
+
+bool perception_fresh(const ModuleModel& model, const ModuleData& data) {
+  if (data.seen_tick < 0) return false;
+  const double age = static_cast<double>(data.tick - data.seen_tick) * model.config().core_period();
+  return age <= model.config().perception_max_age;
+}
+
+bool ball_in_place(const ModuleModel& model, const ModuleData& data) {
+  const Eigen::Vector3d& x = model.hitting().x_star();
+  return std::hypot(data.seen.ball[0] - x.x(), data.seen.ball[1] - x.y()) <=
+         model.config().ball_tolerance;
 }
 
 void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
@@ -207,8 +228,10 @@ void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
   obs.command = data.pending;
   data.pending = Command::kNone;
   obs.request_valid = data.request_valid;
-  obs.perception_fresh = true;  // simulator mode: ball and hole come from the world state
-  bool fault = data.compute_fault || !finite(q) || !finite(qd) || !finite(data.q_ref);
+  obs.perception_fresh = perception_fresh(model, data);
+  obs.ball_in_place = ball_in_place(model, data);
+  bool fault = data.compute_fault || data.overrun_fault || !finite(q) || !finite(qd) ||
+               !finite(data.q_ref);
   if (!fault) {
     for (int j = 0; j < 7; ++j) {
       if (q[j] < arm.position_lower()[j] - 0.02 || q[j] > arm.position_upper()[j] + 0.02 ||
@@ -217,6 +240,8 @@ void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
     }
   }
   if (data.state == ModuleState::kHitting && data.time_in_state > c.max_hit_duration) fault = true;
+  // Lost ball: no fresh perception while the club is on its way to the ball.
+  if (data.state == ModuleState::kHitting && !data.ball_hit && !obs.perception_fresh) fault = true;
   obs.fault = fault;
   double qd_max = 0.0;
   for (int j = 0; j < 7; ++j) qd_max = std::max(qd_max, std::abs(qd[j]));
@@ -284,8 +309,6 @@ void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
       // running away.
       const Eigen::Vector3d lead = data.p_ref - p_kin;
       if (lead.norm() > c.reference_leash) data.p_ref = p_kin + lead * (c.reference_leash / lead.norm());
-      if (data.tick % c.robot_update_divider == 0 || data.time_in_state == 0.0)
-        robot_update(model, data);
       // Smoothstep ramp-in: the DS asks for full speed at once, the arm starts from rest.
       const double u = std::min(1.0, data.time_in_state / c.hit_ramp_time);
       const Eigen::Vector3d v_ref = data.v_ds * (u * u * (3.0 - 2.0 * u));

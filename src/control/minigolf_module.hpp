@@ -5,8 +5,11 @@
 /// Model/Data split: `ModuleModel` is immutable after construction (config, arm, hitting model,
 /// MuJoCo ids); `ModuleData` is the mutable, preallocated per-run state. One Data per thread.
 ///
-/// Real-time contract: `core_update` (and the robot update it calls every
-/// `robot_update_divider`-th tick) allocates nothing and never throws; a NaN, a limit breach or a
+/// Schedulers (full_system.hpp: lockstep; realtime_runner.hpp: three threads) call `robot_update`
+/// every `robot_update_divider`-th core tick with the perception of that moment, then
+/// `core_update`; the module code is the same for both.
+///
+/// Real-time contract: `core_update` and `robot_update` allocate nothing and never throw; a NaN, a limit breach or a
 /// failed DS/IK evaluation becomes a fault observation, and next_state brakes. `request_hit`,
 /// `request_rest`, `request_idle` are the user update: called between ticks, they may validate
 /// and fail (the hit request is refused, never thrown).
@@ -30,6 +33,7 @@
 #include "control/module_state.hpp"
 #include "ds/hitting_ds.hpp"
 #include "ds/hitting_model.hpp"
+#include "perception/perception.hpp"
 #include "robot/arm_model.hpp"
 #include "robot/ik.hpp"
 
@@ -122,6 +126,10 @@ class ModuleData {
   bool ball_hit = false;       ///< latched during a hit
   bool contact_seen = false;   ///< club_head-ball contact seen this hit
   bool compute_fault = false;  ///< IK/RNEA failed last tick: reported as a fault this tick
+  /// Set by a real-time scheduler after an overrun streak; a fault until the module is reset.
+  bool overrun_fault = false;
+  perception::Perceived seen;   ///< last perception handed to the robot update
+  std::int64_t seen_tick = -1;  ///< core tick of the last fresh perception (-1: never)
   TickInfo last;
 };
 
@@ -140,9 +148,14 @@ void request_idle(ModuleData& data);
 /// and writes the arm's torques into d->ctrl. Real-time safe: no allocation, no throw.
 void core_update(const ModuleModel& model, ModuleData& data, mjData* d);
 
-/// The robot update (every robot_update_divider-th core tick): the DS velocity at p_ref.
-/// Real-time safe.
-void robot_update(const ModuleModel& model, ModuleData& data);
+/// The robot update (every robot_update_divider-th core tick, called by the scheduler): takes the
+/// perceived ball and hole and, while hitting, evaluates the DS velocity at p_ref. Real-time safe.
+void robot_update(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen);
+
+/// True while the last fresh perception is at most perception_max_age old (in core ticks).
+bool perception_fresh(const ModuleModel& model, const ModuleData& data);
+/// True if the perceived ball lies within ball_tolerance (horizontally) of the hitting point x*.
+bool ball_in_place(const ModuleModel& model, const ModuleData& data);
 
 /// [m, world] the club face rest position and [rad] heading for hitting angle `angle`.
 Eigen::Vector3d rest_face_position(const ModuleModel& model, double angle);

@@ -84,6 +84,23 @@ void ModuleConfig::validate() const {
           "hit_ramp_time", "0..1 s", hit_ramp_time);
   require(std::isfinite(velocity_fault_factor) && velocity_fault_factor >= 1.0,
           "velocity_fault_factor", ">= 1", velocity_fault_factor);
+  require(std::isfinite(perception_max_age) && perception_max_age >= core_period() &&
+              perception_max_age <= 5.0,
+          "perception_max_age", "one core period..5 s", perception_max_age);
+  require(std::isfinite(ball_tolerance) && ball_tolerance > 0.0 && ball_tolerance <= 0.2,
+          "ball_tolerance", "0..0.2 m", ball_tolerance);
+  require(overrun_streak_limit >= 1 && overrun_streak_limit <= 10000, "overrun_streak_limit",
+          "1..10000 ticks", overrun_streak_limit);
+  require(vision_port >= 0 && vision_port <= 65535, "vision_port", "0..65535 (0: any free port)",
+          vision_port);
+  require(std::isfinite(vision_sim_rate) && vision_sim_rate >= 1.0 && vision_sim_rate <= 1000.0,
+          "vision_sim_rate", "1..1000 Hz", vision_sim_rate);
+  require(std::isfinite(vision_sim_noise) && vision_sim_noise >= 0.0 && vision_sim_noise <= 0.5,
+          "vision_sim_noise", "0..0.5 m", vision_sim_noise);
+  require(std::isfinite(vision_sim_latency) && vision_sim_latency >= 0.0 && vision_sim_latency <= 5.0,
+          "vision_sim_latency", "0..5 s", vision_sim_latency);
+  require(std::isfinite(vision_sim_dropout) && vision_sim_dropout >= 0.0 && vision_sim_dropout <= 1.0,
+          "vision_sim_dropout", "0..1", vision_sim_dropout);
 }
 
 namespace {
@@ -118,7 +135,9 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
       "rest_offset", "club_face_offset", "rest_speed", "rest_turn_rate", "rest_tolerance",
       "rest_heading_tolerance", "brake_lift_height", "brake_time", "stationary_threshold",
       "ball_moving_speed", "passed_distance", "max_hit_duration", "hit_ramp_time", "reference_leash",
-      "velocity_fault_factor"};
+      "velocity_fault_factor", "params_model", "record", "perception_max_age", "ball_tolerance",
+      "overrun_streak_limit", "vision_port", "vision_sim_rate", "vision_sim_noise",
+      "vision_sim_latency", "vision_sim_dropout"};
   std::string key;
   try {
     for (const auto& kv : root) {
@@ -161,6 +180,16 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
       else if (key == "hit_ramp_time") num(c.hit_ramp_time);
       else if (key == "reference_leash") num(c.reference_leash);
       else if (key == "velocity_fault_factor") num(c.velocity_fault_factor);
+      else if (key == "params_model") c.params_model = v.as<std::string>();
+      else if (key == "record") c.record = v.as<std::string>();
+      else if (key == "perception_max_age") num(c.perception_max_age);
+      else if (key == "ball_tolerance") num(c.ball_tolerance);
+      else if (key == "overrun_streak_limit") c.overrun_streak_limit = v.as<int>();
+      else if (key == "vision_port") c.vision_port = v.as<int>();
+      else if (key == "vision_sim_rate") num(c.vision_sim_rate);
+      else if (key == "vision_sim_noise") num(c.vision_sim_noise);
+      else if (key == "vision_sim_latency") num(c.vision_sim_latency);
+      else if (key == "vision_sim_dropout") num(c.vision_sim_dropout);
     }
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}: {}: wrong type: {}", source, key, e.what()));

@@ -68,6 +68,27 @@ struct ModuleConfig {
   /// Faults: measured joint speed above this fraction of its limit, or a joint outside its range.
   double velocity_fault_factor = 1.5;
 
+  /// Parameter model (`minigolf train` JSON) for the console's `auto`; empty: none loaded.
+  std::string params_model;
+  /// CSV file the console records to from the start (`record on FILE` later); empty: off.
+  std::string record;
+
+  /// [s] perception older than this is stale: no hit starts, a running hit brakes (lost ball).
+  double perception_max_age = 0.2;
+  /// [m] the perceived ball must lie this close (horizontally) to the hitting point to hit.
+  double ball_tolerance = 0.03;
+  /// Real-time mode: this many core ticks in a row that miss their deadline are a fault.
+  int overrun_streak_limit = 10;
+
+  /// Normal mode: UDP port the vision feed listens on, on 127.0.0.1 (0: any free port, printed).
+  int vision_port = 47001;
+  /// The console's built-in vision simulator (`--vision-sim`): it observes the simulated world
+  /// and publishes to vision_port over loopback, like `minigolf vision-sim`.
+  double vision_sim_rate = 60.0;     ///< [Hz]
+  double vision_sim_noise = 0.001;   ///< [m] Gaussian noise std per coordinate
+  double vision_sim_latency = 0.02;  ///< [s] capture to send
+  double vision_sim_dropout = 0.0;   ///< probability a message is not sent
+
   /// Throws mg::InputError naming the first bad field ("expected X, got Y").
   void validate() const;
   /// [s] core period.

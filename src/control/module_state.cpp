@@ -23,6 +23,7 @@ Transition next_state(ModuleState state, const Observation& o) {
       if (state != ModuleState::kRest || !o.at_rest_pose)
         return {state, Reason::kHitRefusedNotAtRest};
       if (!o.perception_fresh) return {state, Reason::kHitRefusedStalePerception};
+      if (!o.ball_in_place) return {state, Reason::kHitRefusedBallNotInPlace};
       if (!o.request_valid) return {state, Reason::kHitRefusedInvalidRequest};
       return {ModuleState::kHitting, Reason::kUserHit};
     case Command::kNone:
@@ -65,6 +66,7 @@ std::string_view to_string(Reason reason) {
     case Reason::kFault: return "fault";
     case Reason::kHitRefusedNotAtRest: return "hit refused: not at the rest pose";
     case Reason::kHitRefusedStalePerception: return "hit refused: no fresh perception of ball and hole";
+    case Reason::kHitRefusedBallNotInPlace: return "hit refused: the ball is not at the hitting point";
     case Reason::kHitRefusedInvalidRequest: return "hit refused: no hitting model or angle/speed outside the safe envelope";
     case Reason::kHitRefusedWhileMoving: return "hit refused: a hit is already running";
     case Reason::kRestRefusedWhileHitting: return "rest refused: wait until braking ends";

@@ -24,6 +24,7 @@ struct Observation {
   bool passed_ball = false;        ///< the hitting DS reached the hitting point without contact
   bool joints_stationary = false;  ///< every joint speed under the stationary threshold
   bool perception_fresh = false;   ///< ball and hole perceived recently enough to act on
+  bool ball_in_place = true;       ///< the perceived ball lies at the hitting point
   bool request_valid = false;      ///< hitting model loaded, angle/speed inside the safe envelope
   bool fault = false;              ///< NaN, lost ball, limit violation, overrun streak
 };
@@ -40,6 +41,7 @@ enum class Reason {
   kFault,
   kHitRefusedNotAtRest,
   kHitRefusedStalePerception,
+  kHitRefusedBallNotInPlace,
   kHitRefusedInvalidRequest,
   kHitRefusedWhileMoving,
   kRestRefusedWhileHitting,

@@ -40,6 +40,7 @@ struct Bench {
       ModuleConfig{})};
   sim::DataPtr data{world.make_data()};
   ModuleData md{model};
+  perception::SimulatorPerception truth{world, data.get()};
 
   Bench() {
     mjData* d = data.get();
@@ -50,9 +51,12 @@ struct Bench {
     mj_forward(world.model(), d);
     module_reset(model, md, d);
   }
-  /// One core tick and two physics steps; returns the allocations made inside core_update.
+  /// One core tick (with the robot update when due) and two physics steps; returns the
+  /// allocations made inside the robot and core updates.
   long tick() {
     const long before = g_allocations.load();
+    if (md.tick % model.config().robot_update_divider == 0)
+      robot_update(model, md, truth.perceive(data->time));
     core_update(model, md, data.get());
     const long made = g_allocations.load() - before;
     world.step(data.get());

@@ -1,0 +1,147 @@
+#pragma once
+/// A running minigolf system behind `minigolf console`: the field's world with the WAM, the
+/// module, its perception (simulator truth, or the network vision feed in normal mode), a
+/// parameter model for `auto`, a recorder, and one of two schedulers:
+///
+///   lockstep (default)  one thread; `wait S` runs S simulated seconds as fast as possible.
+///                       Deterministic: the same script gives the same bits.
+///   realtime            three threads: the core update + physics at 500 Hz paced by the wall
+///                       clock (highest priority), the robot update (perception, DS, recorder,
+///                       printing) every robot_update_divider-th period, and the user update
+///                       (the console, the calling thread). One mutex guards the module and world;
+///                       the robot and user updates hold it for microseconds.
+///
+/// The module functions (core_update, robot_update, request_*) are the same in both; only the
+/// scheduler differs. Commands are answered on the output stream; state changes, refusals and
+/// ball outcomes are printed as they happen. Bad input never throws out of `execute`.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <iosfwd>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <thread>
+
+#include "control/console_command.hpp"
+#include "control/full_system.hpp"
+#include "control/minigolf_module.hpp"
+#include "control/module_config.hpp"
+#include "control/recorder.hpp"
+#include "learning/learner.hpp"
+#include "perception/perception.hpp"
+#include "perception/vision_feed.hpp"
+#include "perception/vision_publisher.hpp"
+#include "sim/putt.hpp"
+#include "sim/world.hpp"
+
+namespace mg::control {
+
+struct SessionOptions {
+  bool realtime = false;    ///< three threads paced by the wall clock; else lockstep
+  bool vision_sim = false;  ///< normal mode: the built-in vision simulator publishes on loopback
+  bool echo = false;        ///< print every command line before its answer (scripts, logs)
+  std::uint64_t seed = 1;   ///< vision simulator noise and dropouts
+};
+
+/// Core-update wall time over a whole session in 1 us bins (no allocation, any length).
+class TimingHistogram {
+ public:
+  static constexpr int kBins = 4000;  ///< 0..4 ms; longer times go to the last bin
+  void add(double us) noexcept;
+  CoreTiming summary(double budget_us) const;
+
+ private:
+  std::array<std::uint32_t, kBins> bins_{};
+  std::uint64_t count_ = 0;
+  std::uint64_t over_budget_ = 0;
+  double budget_us_seen_ = 0.0;
+  double sum_us_ = 0.0;
+  double max_us_ = 0.0;
+};
+
+class Session {
+ public:
+  /// Loads the field, hitting model and (if configured) parameter model, puts the arm at its
+  /// default rest posture in Idle, opens the vision feed in normal mode and starts the threads in
+  /// realtime mode. Throws InputError/IoError for bad configuration.
+  Session(const ModuleConfig& config, const SessionOptions& options, std::ostream& out);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  /// Executes one console line and answers on the output. Returns false after `quit`.
+  /// Never throws: bad commands and failed actions are answered.
+  bool execute(std::string_view line);
+  /// Reads lines until `quit` or the end of input (then quits). `prompt`: print "minigolf> ".
+  void run(std::istream& in, bool prompt);
+
+  // Observers (thread-safe).
+  ModuleState state() const;
+  double time() const;  ///< [s] simulated time
+  CoreTiming timing() const;
+  /// Ticks whose work ended after the next tick was due (realtime mode; 0 in lockstep).
+  std::uint64_t deadline_misses() const { return deadline_misses_.load(); }
+  std::uint64_t core_ticks() const { return core_ticks_.load(); }
+  std::uint16_t vision_port() const;
+  perception::VisionCounters vision_counters() const;
+  std::array<double, 2> ball_position() const;
+  std::string scheduling() const;  ///< the scheduler and the thread priorities it got
+
+ private:
+  struct Event;
+  void tick_locked(bool lockstep);
+  void robot_tick_locked();
+  void push_event_locked(const Event& e);
+  void print_events();
+  void run_for(double seconds);
+  void core_loop();
+  void robot_loop();
+  void stop_threads();
+  void say(std::string_view text);
+  void do_command(const ConsoleCommand& command);
+  void load_params(const std::string& path);
+  std::string scheduling_locked() const;
+
+  ModuleConfig config_;
+  SessionOptions options_;
+  std::ostream& out_;
+  sim::World world_;
+  sim::DataPtr d_;
+  std::unique_ptr<ModuleModel> model_;
+  std::unique_ptr<ModuleData> md_;
+  perception::SimulatorPerception truth_;
+  std::unique_ptr<perception::VisionFeed> feed_;
+  std::unique_ptr<perception::NetworkPerception> network_;
+  std::unique_ptr<perception::VisionPublisher> publisher_;
+  perception::Perception* perception_ = nullptr;
+  std::optional<learning::Model> params_;
+  std::string params_path_;
+  Recorder recorder_;
+  double angle_ = 0.0;  ///< [rad] the console's current hitting angle
+  double speed_ = 1.0;  ///< [m/s] the console's current club speed
+  bool hit_when_at_rest_ = false;
+  std::optional<sim::OutcomeTracker> tracker_;
+  int steps_per_tick_ = 2;
+  TimingHistogram timing_;
+
+  static constexpr int kEventCapacity = 256;
+  std::unique_ptr<Event[]> events_;
+  int event_head_ = 0;
+  int event_count_ = 0;
+  std::uint64_t events_lost_ = 0;
+
+  mutable std::mutex mutex_;  ///< world, module, perception, recorder, events
+  std::mutex out_mutex_;
+  std::atomic<bool> stop_{false};
+  std::atomic<std::uint64_t> deadline_misses_{0};
+  std::atomic<std::uint64_t> core_ticks_{0};
+  std::thread core_thread_;
+  std::thread robot_thread_;
+  std::string core_priority_;   ///< realtime: what the core thread got (guarded by mutex_)
+  std::string robot_priority_;  ///< realtime: what the robot thread got (guarded by mutex_)
+};
+
+}  // namespace mg::control

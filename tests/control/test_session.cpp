@@ -1,0 +1,262 @@
+// The console session in lockstep mode: scripted sessions, bad commands, the recorder, normal
+// mode over loopback UDP (vision simulator, garbage, stale and lost perception), `auto`.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "control/session.hpp"
+#include "core/csv.hpp"
+#include "learning/dataset.hpp"
+#include "learning/learner.hpp"
+#include "perception/udp.hpp"
+#include "perception/vision_message.hpp"
+
+namespace mg::control {
+namespace {
+
+std::string run_script(const std::string& script, const ModuleConfig& config = {},
+                       SessionOptions options = {}) {
+  std::ostringstream out;
+  {
+    Session session(config, options, out);
+    std::istringstream in(script);
+    session.run(in, false);
+  }
+  return out.str();
+}
+
+std::vector<std::string> transitions(const std::string& text) {
+  std::vector<std::string> t;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.find(" -> ") != std::string::npos) t.push_back(line.substr(line.find(']') + 2));
+  return t;
+}
+
+std::filesystem::path temp_dir() {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("mg_session_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                    "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+TEST(Session, ScriptedSessionGoesRestHittingBrakingIdle) {
+  const std::string out =
+      run_script("rest\nwait 1.5\nangle 0.1\nspeed 1.0\nhit\nwait 3\nstatus\nquit\n");
+  const auto t = transitions(out);
+  ASSERT_GE(t.size(), 4u) << out;
+  EXPECT_EQ(t[0].rfind("Idle -> Rest", 0), 0u) << out;
+  EXPECT_EQ(t[1].rfind("Rest -> Hitting", 0), 0u) << out;
+  EXPECT_EQ(t[2], "Hitting -> Braking: the ball was hit") << out;
+  EXPECT_EQ(t[3], "Braking -> Idle: all joints stationary") << out;
+  EXPECT_NE(out.find("going to the rest pose first"), std::string::npos) << out;  // angle changed
+  EXPECT_NE(out.find("ball: "), std::string::npos) << out;
+  EXPECT_NE(out.find("state Idle"), std::string::npos) << out;
+  EXPECT_NE(out.find("bye"), std::string::npos);
+}
+
+TEST(Session, BallLeavesAlongTheCommandedAngle) {
+  std::ostringstream out;
+  Session session(ModuleConfig{}, {}, out);
+  for (const char* line : {"angle 0.2", "speed 0.8", "hit", "wait 3"}) session.execute(line);
+  const auto ball = session.ball_position();
+  EXPECT_GT(std::hypot(ball[0], ball[1]), 0.15) << out.str();
+  EXPECT_NEAR(std::atan2(ball[1], ball[0]), 0.2, 0.02) << out.str();
+  EXPECT_EQ(session.state(), ModuleState::kIdle);
+}
+
+TEST(Session, BadCommandsAreAnsweredAndChangeNothing) {
+  std::ostringstream out;
+  Session session(ModuleConfig{}, {}, out);
+  const std::vector<std::string> bad = {
+      "fly", "angle", "angle abc", "angle nan", "angle 5", "speed -1", "speed 9", "hole 99 9",
+      "hole 1", "load hitting /nonexistent/model.json", "load params /nonexistent.json",
+      "load nothing x", "record on /nonexistent-dir/x.csv", "record off", "auto", "wait -1",
+      "wait 1e9", std::string("\x01\x02\xff", 3)};
+  for (const auto& line : bad) EXPECT_TRUE(session.execute(line)) << line;
+  EXPECT_EQ(session.state(), ModuleState::kIdle);
+  EXPECT_EQ(session.time(), 0.0);
+  const std::string text = out.str();
+  std::size_t answers = 0;
+  for (std::size_t p = 0; (p = text.find('\n', p)) != std::string::npos; ++p) ++answers;
+  EXPECT_GE(answers, bad.size() + 1) << text;  // the banner plus one answer per line
+  EXPECT_NE(text.find("angle refused"), std::string::npos);
+  EXPECT_NE(text.find("speed refused"), std::string::npos);
+  EXPECT_NE(text.find("auto refused"), std::string::npos);
+}
+
+TEST(Session, LockstepRunsAreBitIdentical) {
+  const std::string script = "angle -0.1\nspeed 0.9\nhit\nwait 2.5\nreset\nhole 1.2 0.3\nwait 0.2\nquit\n";
+  auto strip_timing = [](std::string s) {
+    std::string kept;
+    std::istringstream in(s);
+    std::string line;
+    while (std::getline(in, line))
+      if (line.rfind("core update:", 0) != 0) kept += line + "\n";
+    return kept;
+  };
+  const std::string a = strip_timing(run_script(script));
+  const std::string b = strip_timing(run_script(script));
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a.find("ball back on the tee"), std::string::npos) << a;
+}
+
+TEST(Session, RecorderWritesOneRowPerRobotUpdate) {
+  const auto dir = temp_dir();
+  const auto file = dir / "rec.csv";
+  std::filesystem::remove(file);
+  const std::string out = run_script("record on " + file.string() + "\nrest\nwait 1\nrecord off\nquit\n");
+  ASSERT_TRUE(std::filesystem::exists(file)) << out;
+  const CsvTable csv = read_csv(file);
+  EXPECT_EQ(csv.header.front(), "t");
+  EXPECT_EQ(csv.header.size(), 2u + 21u + 3u + 3u + 3u + 2u + 3u);
+  // 1 s at the 100 Hz robot rate.
+  EXPECT_NEAR(static_cast<double>(csv.rows.size()), 100.0, 1.0);
+  EXPECT_NE(out.find("recording written: 100 rows"), std::string::npos) << out;
+}
+
+TEST(Session, NormalModeHitsWithTheBuiltInVisionSimulator) {
+  ModuleConfig config;
+  config.mode = ModuleMode::kNormal;
+  config.vision_port = 0;
+  SessionOptions options;
+  options.vision_sim = true;
+  const std::string out = run_script("speed 1.0\nhit\nwait 3\nstatus\nquit\n", config, options);
+  const auto t = transitions(out);
+  ASSERT_GE(t.size(), 3u) << out;
+  EXPECT_EQ(t[1].rfind("Rest -> Hitting", 0), 0u) << out;
+  EXPECT_EQ(t[2], "Hitting -> Braking: the ball was hit") << out;
+  EXPECT_NE(out.find("perception: fresh"), std::string::npos) << out;
+}
+
+/// A sender on loopback that plays a misbehaving vision system.
+struct Sender {
+  perception::UdpSender udp;
+  std::uint64_t seq = 0;
+  explicit Sender(std::uint16_t port) : udp("127.0.0.1", port) {}
+  void good(double ball_x = 0.0) {
+    perception::VisionMessage m;
+    m.seq = ++seq;
+    m.stamp = 0.0;
+    m.ball = {ball_x, 0.0, 0.02135};
+    m.hole = {2.0, 0.0, 0.0};
+    udp.send(perception::format_vision_message(m));
+  }
+  void garbage() {
+    udp.send("{\"format\": \"minigolf-vision/1\", \"seq\": ");
+    udp.send("not json at all");
+    perception::VisionMessage far;
+    far.seq = ++seq;
+    far.ball = {50.0, 0.0, 0.0};
+    udp.send(perception::format_vision_message(far));  // out of range
+    udp.send(std::string(2000, 'x'));                   // too long
+  }
+};
+
+TEST(Session, NormalModeNeverHitsOnStaleOrBadPerception) {
+  ModuleConfig config;
+  config.mode = ModuleMode::kNormal;
+  config.vision_port = 0;
+  std::ostringstream out;
+  Session session(config, {}, out);
+  Sender sender(session.vision_port());
+
+  // Nothing but garbage: the arm goes to rest but never hits.
+  session.execute("speed 0.8");
+  session.execute("hit");
+  for (int i = 0; i < 150; ++i) {
+    sender.garbage();
+    session.execute("wait 0.01");
+  }
+  EXPECT_EQ(session.state(), ModuleState::kRest) << out.str();
+  EXPECT_NE(out.str().find("hit refused: no fresh perception"), std::string::npos) << out.str();
+  const auto k = session.vision_counters();
+  EXPECT_EQ(k.accepted, 0u);
+  EXPECT_GE(k.malformed, 300u);
+  EXPECT_GE(k.out_of_range, 150u);
+  EXPECT_GE(k.too_long, 150u);
+
+  // Good messages that stop: stale after perception_max_age; a hit then is refused.
+  for (int i = 0; i < 20; ++i) {
+    sender.good();
+    session.execute("wait 0.01");
+  }
+  perception::VisionMessage repeat;
+  repeat.seq = 1;
+  sender.udp.send(perception::format_vision_message(repeat));
+  session.execute("wait 0.01");
+  EXPECT_EQ(session.vision_counters().reordered, 1u);
+  session.execute("wait 0.5");
+  session.execute("hit");
+  session.execute("wait 0.2");
+  EXPECT_EQ(session.state(), ModuleState::kRest) << out.str();
+
+  // A ball that is not at the hitting point: refused too.
+  for (int i = 0; i < 20; ++i) {
+    sender.good(0.2);
+    session.execute("wait 0.01");
+  }
+  session.execute("hit");
+  for (int i = 0; i < 10; ++i) {
+    sender.good(0.2);
+    session.execute("wait 0.01");
+  }
+  EXPECT_EQ(session.state(), ModuleState::kRest) << out.str();
+  EXPECT_NE(out.str().find("the ball is not at the hitting point"), std::string::npos) << out.str();
+}
+
+TEST(Session, LostPerceptionDuringAHitBrakes) {
+  ModuleConfig config;
+  config.mode = ModuleMode::kNormal;
+  config.vision_port = 0;
+  std::ostringstream out;
+  Session session(config, {}, out);
+  Sender sender(session.vision_port());
+  session.execute("speed 0.5");  // slow: the hit lasts longer than perception_max_age
+  session.execute("rest");
+  for (int i = 0; i < 300 && session.state() != ModuleState::kHitting; ++i) {
+    sender.good();
+    if (i == 150) session.execute("hit");
+    session.execute("wait 0.01");
+  }
+  ASSERT_EQ(session.state(), ModuleState::kHitting) << out.str();
+  session.execute("wait 0.3");  // the vision system goes silent
+  EXPECT_NE(session.state(), ModuleState::kHitting);
+  EXPECT_NE(out.str().find("Hitting -> Braking: fault"), std::string::npos) << out.str();
+  const auto ball = session.ball_position();
+  EXPECT_LT(std::hypot(ball[0], ball[1]), 0.005) << "the ball was not touched";
+}
+
+TEST(Session, AutoTakesAngleAndSpeedFromTheParameterModel) {
+  const auto dir = temp_dir();
+  // A tiny flat-field data set: aim at the hole, speed grows with distance.
+  std::string csv = "xi_x,xi_y,angle,speed\n";
+  for (int i = 0; i < 12; ++i) {
+    const double x = 1.0 + 0.4 * (i / 4), y = -0.3 + 0.2 * (i % 4);
+    csv += std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(std::atan2(y, x)) +
+           "," + std::to_string(0.5 + 0.4 * std::hypot(x, y)) + "\n";
+  }
+  std::ofstream(dir / "data.csv") << csv;
+  learning::TrainOptions options;
+  options.restarts = 2;
+  const learning::Model model = learning::train(learning::load_dataset(dir / "data.csv"), options);
+  learning::save_model(model, dir / "params.json");
+
+  std::ostringstream out;
+  Session session(ModuleConfig{}, {}, out);
+  session.execute("hole 1.5 0.2");
+  session.execute("wait 0.05");
+  session.execute("load params " + (dir / "params.json").string());
+  session.execute("auto");
+  EXPECT_NE(out.str().find("auto: xi (1.500, 0.200) -> angle 0.13"), std::string::npos) << out.str();
+}
+
+}  // namespace
+}  // namespace mg::control
