@@ -6,7 +6,11 @@ Transition next_state(ModuleState state, const Observation& o) {
   const bool moving_state = state == ModuleState::kHitting || state == ModuleState::kRest;
   if (o.fault) {
     if (moving_state) return {ModuleState::kBraking, Reason::kFault};
-    return {state, state == ModuleState::kBraking ? Reason::kNoChange : Reason::kFault};
+    // A lasting fault still ends braking once the arm stands still (then Idle holds it).
+    if (state == ModuleState::kBraking)
+      return o.joints_stationary ? Transition{ModuleState::kIdle, Reason::kStationary}
+                                 : Transition{state, Reason::kNoChange};
+    return {state, Reason::kFault};
   }
   switch (o.command) {
     case Command::kIdle:

@@ -461,6 +461,11 @@ void Session::do_command(const ConsoleCommand& command) {
           std::lock_guard lock(mutex_);
           hit_when_at_rest_ = false;
           request_idle(*md_);
+          // `idle` at standstill acknowledges an overrun-streak fault.
+          if (md_->state == ModuleState::kIdle && md_->overrun_fault) {
+            md_->overrun_fault = false;
+            say("overrun fault cleared");
+          }
         } else if constexpr (std::is_same_v<T, RestCmd>) {
           std::lock_guard lock(mutex_);
           request_rest(*model_, *md_, angle_);

@@ -148,3 +148,28 @@ TEST(MinigolfModule, RestPoseIsBehindTheBallAlongTheHittingDirection) {
 
 }  // namespace
 }  // namespace mg::control
+
+namespace mg::control {
+namespace {
+
+TEST(MinigolfModule, OverrunStreakFaultBrakesAHit) {
+  Bench b;
+  ASSERT_TRUE(request_rest(b.model, b.md, 0.0));
+  b.run_until([&] { return b.md.at_rest_pose; }, 3000);
+  ASSERT_TRUE(request_hit(b.model, b.md, 0.0, 1.0));
+  for (int i = 0; i < 20; ++i) b.tick();
+  ASSERT_EQ(b.md.state, ModuleState::kHitting);
+  b.md.overrun_fault = true;  // what the real-time scheduler sets after a streak of misses
+  b.tick();
+  EXPECT_EQ(b.md.state, ModuleState::kBraking);
+  EXPECT_EQ(b.md.last.reason, Reason::kFault);
+  b.run_until([&] { return b.md.state == ModuleState::kIdle; }, 1500);
+  EXPECT_EQ(b.md.state, ModuleState::kIdle);
+  // Still faulted: a new hit is not started until the module is reset.
+  ASSERT_TRUE(request_rest(b.model, b.md, 0.0));
+  b.tick();
+  EXPECT_EQ(b.md.state, ModuleState::kIdle);
+}
+
+}  // namespace
+}  // namespace mg::control
