@@ -1,0 +1,185 @@
+// study launch-error [--field flat] [--angles-deg -10,0,10] [--hits 10] [--speed 1.0]
+//   [--torque-noise 0.01] [--placement-noise 0.001] [--seed 1] [--out DIR] [--json] [--plot]
+// The launch-error study of thesis 6.1 (control/launch_study.hpp): progress on stderr, a Markdown
+// table (or --json) on stdout, DIR/launch_error.{csv,md} and with --plot DIR/launch_error.png.
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_util.hpp"
+#include "cli/commands.hpp"
+#include "control/launch_study.hpp"
+#include "core/error.hpp"
+#include "core/io.hpp"
+#include "ds/hitting_model.hpp"
+#include "field/field.hpp"
+
+namespace mg::cli {
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+double parse_number(const std::string& what, const std::string& text) {
+  double v = 0.0;
+  const char* first = text.data();
+  if (!text.empty() && text.front() == '+') ++first;
+  auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size())
+    throw InputError(fmt::format("{}: expected a number, got '{}'", what, text));
+  if (!std::isfinite(v)) throw InputError(fmt::format("{}: expected a finite number, got '{}'", what, text));
+  return v;
+}
+
+std::uint64_t parse_unsigned(const std::string& what, const std::string& text) {
+  std::uint64_t v = 0;
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size())
+    throw InputError(fmt::format("{}: expected a non-negative integer, got '{}'", what, text));
+  return v;
+}
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
+nlohmann::json summary_json(const control::LaunchStudyResult& r) {
+  const auto& o = r.options;
+  nlohmann::json angles = nlohmann::json::array();
+  for (const auto& s : r.summary) {
+    angles.push_back({{"angle_deg", s.commanded_angle_deg},
+                      {"n", s.n},
+                      {"missed", s.missed},
+                      {"mean_error_deg", number_or_null(s.mean_error_deg)},
+                      {"std_error_deg", number_or_null(s.std_error_deg)},
+                      {"club_speed_error_mean", number_or_null(s.mean_club_speed_error)},
+                      {"club_speed_error_std", number_or_null(s.std_club_speed_error)},
+                      {"club_speed_error_pct", number_or_null(s.mean_club_speed_error_pct)},
+                      {"launch_club_ratio_mean", number_or_null(s.mean_launch_club_ratio)},
+                      {"launch_club_ratio_std", number_or_null(s.std_launch_club_ratio)}});
+  }
+  return {{"field", r.field},     {"hole", o.hole},
+          {"hits", o.hits},       {"speed", o.speed},
+          {"torque_noise", o.torque_noise}, {"placement_noise", o.placement_noise},
+          {"seed", o.seed},       {"angles", angles}};
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+}  // namespace
+
+void add_study_commands(CLI::App& app) {
+  struct Options {
+    std::string field = "flat";
+    std::string angles = "-10,0,10";
+    std::string hits = "10";
+    std::string speed = "1.0";
+    std::string torque_noise = "0.01";
+    std::string placement_noise = "0.001";
+    std::string seed = "1";
+    std::string out = "out/study";
+    bool json = false;
+    bool plot = false;
+  };
+  auto o = std::make_shared<Options>();
+  CLI::App* study = app.add_subcommand("study", "Experiments with the simulated arm (thesis ch. 6)");
+  study->require_subcommand(1);
+  CLI::App* cmd = study->add_subcommand(
+      "launch-error", "Launch-angle and hitting-speed error of repeated hits with execution noise (thesis 6.1)");
+  cmd->add_option("--field", o->field, "Shipped field name or path to a field file")->capture_default_str();
+  cmd->add_option("--angles-deg", o->angles, "Commanded hitting angles [deg], comma-separated")->capture_default_str();
+  cmd->add_option("--hits", o->hits, "Hits per angle")->capture_default_str();
+  cmd->add_option("--speed", o->speed, "Commanded club speed [m/s]")->capture_default_str();
+  cmd->add_option("--torque-noise", o->torque_noise,
+                  "Joint-torque disturbance std, fraction of each joint's torque limit, per core tick")
+      ->capture_default_str();
+  cmd->add_option("--placement-noise", o->placement_noise, "Ball placement std per axis [m]")
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Noise seed")->capture_default_str();
+  cmd->add_option("--out", o->out, "Output directory for launch_error.{csv,md,png}")->capture_default_str();
+  cmd->add_flag("--json", o->json, "Print a JSON summary instead of the Markdown table");
+  cmd->add_flag("--plot", o->plot, "Also draw DIR/launch_error.png (scripts/plot_launch_error.py)");
+  cmd->callback([o] {
+    control::LaunchStudyOptions opt;
+    opt.angles_deg.clear();
+    for (const std::string& cell : parse_names("--angles-deg", o->angles))
+      opt.angles_deg.push_back(parse_number("--angles-deg", cell));
+    const std::uint64_t hits = parse_unsigned("--hits", o->hits);
+    if (hits < 1 || hits > 100000) throw InputError(fmt::format("--hits: expected 1..100000, got {}", o->hits));
+    opt.hits = static_cast<int>(hits);
+    opt.speed = parse_number("--speed", o->speed);
+    opt.torque_noise = parse_number("--torque-noise", o->torque_noise);
+    if (opt.torque_noise < 0.0 || opt.torque_noise > 1.0)
+      throw InputError(fmt::format("--torque-noise: expected 0..1 (fraction of the torque limit), got {}", o->torque_noise));
+    opt.placement_noise = parse_number("--placement-noise", o->placement_noise);
+    if (opt.placement_noise < 0.0 || opt.placement_noise > 0.05)
+      throw InputError(fmt::format("--placement-noise: expected 0..0.05 m, got {}", o->placement_noise));
+    opt.seed = parse_unsigned("--seed", o->seed);
+    if (o->out.empty()) throw InputError("--out: expected a directory, got ''");
+
+    control::ModuleConfig config;
+    config.field = o->field;
+    config.validate();
+    for (double a : opt.angles_deg)
+      if (a * kDeg < config.angle_min || a * kDeg > config.angle_max)
+        throw InputError(fmt::format("--angles-deg: expected {:.1f}..{:.1f} deg (safe envelope), got {}",
+                                     config.angle_min / kDeg, config.angle_max / kDeg, a));
+    if (opt.speed < config.speed_min || opt.speed > config.speed_max)
+      throw InputError(fmt::format("--speed: expected {}..{} m/s (club speed, safe envelope), got {}",
+                                   config.speed_min, config.speed_max, o->speed));
+    opt.validate();
+
+    const sim::World world = control::make_world_with_arm(field::load_field(o->field));
+    opt.hole = world.field().hole.position;
+    const control::ModuleModel model = control::make_module_model(
+        world, ds::read_hitting_model(data_dir() / "models" / "hitting-default.json"), config);
+
+    const int total = static_cast<int>(opt.angles_deg.size()) * opt.hits;
+    int done = 0;
+    const control::LaunchStudyResult r =
+        control::run_launch_study(world, model, opt, [&](const control::LaunchHit& h) {
+          ++done;
+          if (h.hit)
+            fmt::print(stderr, "[{}/{}] angle {:g} deg hit {}: launch error {:+.3f} deg, club {:.3f} m/s, launch {:.3f} m/s\n",
+                       done, total, h.commanded_angle_deg, h.hit_index, h.launch_error_deg,
+                       h.club_speed, h.launch_speed);
+          else
+            fmt::print(stderr, "[{}/{}] angle {:g} deg hit {}: missed ({}; rest time {:.2f} s)\n", done,
+                       total, h.commanded_angle_deg, h.hit_index, h.failure, h.rest_time);
+          std::fflush(stderr);
+        });
+
+    const std::filesystem::path dir(o->out);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw IoError(fmt::format("--out: cannot create '{}': {}", dir.string(), ec.message()));
+    const std::string markdown = control::launch_study_markdown(r);
+    write_file_atomic(dir / "launch_error.csv", control::launch_study_csv(r));
+    write_file_atomic(dir / "launch_error.md", markdown);
+    if (o->plot) {
+      const std::filesystem::path script =
+          data_dir().parent_path() / "scripts" / "plot_launch_error.py";
+      const std::string command = "/usr/bin/python3 " + shell_quote(script.string()) + " " +
+                                  shell_quote((dir / "launch_error.csv").string()) + " " +
+                                  shell_quote((dir / "launch_error.png").string()) + " 1>&2";
+      if (std::system(command.c_str()) != 0)
+        throw Error(fmt::format("--plot: {} failed", script.string()));
+    }
+    if (o->json)
+      fmt::print("{}\n", summary_json(r).dump());
+    else
+      fmt::print("{}", markdown);
+  });
+}
+
+}  // namespace mg::cli
