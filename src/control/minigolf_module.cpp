@@ -43,13 +43,24 @@ ModuleModel::ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::Hit
   ik_.dt = config_.core_period();
   speed_cap_ = config_.speed_max;
   dynamic_cap_ = std::min(config_.speed_max, config_.arm_speed_cap);
+  rest_speed_ = config_.rest_speed;
+  rest_turn_rate_ = config_.rest_turn_rate;
   if (config_.mode == ModuleMode::kNormal) {
     speed_cap_ = std::min(speed_cap_, robot::kSafeEndpointSpeed);
     dynamic_cap_ = std::min(dynamic_cap_, speed_cap_);
     ik_.velocity_scale = 0.5;
+    rest_speed_ *= 0.5;  // thesis 4.2.1: the real arm goes to the rest pose more slowly
+    rest_turn_rate_ *= 0.5;
   }
   ik_.validate();
   for (int j = 0; j < 7; ++j) posture_[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
+}
+
+double ModuleModel::club_speed_cap(double angle) const {
+  if (!(angle < 0.0)) return dynamic_cap_;
+  const double u = std::min(1.0, -angle / config_.negative_cap_angle);
+  const double cap = config_.arm_speed_cap + u * (config_.arm_speed_cap_negative - config_.arm_speed_cap);
+  return std::min(dynamic_cap_, cap);
 }
 
 ModuleData::ModuleData(const ModuleModel& model) : ds(model.hitting()) {}
@@ -168,7 +179,9 @@ bool request_hit(const ModuleModel& model, ModuleData& data, double angle, doubl
   if (std::abs(angle - data.angle) > 1e-9) return false;
   ds::HittingCommand cmd;
   cmd.angle = angle;
-  cmd.speed = speed;
+  // Above what the arm tracks at this angle the DS is asked for the cap itself (a capped DS
+  // velocity with the original speed profile struck the ball off-centre).
+  cmd.speed = std::min(speed, model.club_speed_cap(angle));
   cmd.modulator = ds::Modulator::kSine;
   cmd.start = rest_face_position(model, angle) + model.config().club_face_offset * direction_of(angle);
   try {
@@ -197,8 +210,8 @@ void robot_update(const ModuleModel& model, ModuleData& data, const perception::
   const double n = data.v_ds.norm();
   if (!std::isfinite(n)) {
     data.v_ds.setZero();
-  } else if (n > model.club_speed_cap()) {
-    data.v_ds *= model.club_speed_cap() / n;  // what the arm can track / the mode's speed rule
+  } else if (n > model.club_speed_cap(data.angle)) {
+    data.v_ds *= model.club_speed_cap(data.angle) / n;  // what the arm can track / the mode's rule
   }
 }
 
@@ -287,9 +300,10 @@ void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
     robot::FaceTarget target;
     if (data.state == ModuleState::kRest) {
       const Eigen::Vector3d goal = rest_face_position(model, data.angle);
-      data.setpoint = approach(data.setpoint, goal, c.rest_speed * dt);
+      data.setpoint = approach(data.setpoint, goal, model.rest_speed() * dt);
       const double dh = wrap_angle(data.angle - data.setpoint_heading);
-      data.setpoint_heading += std::clamp(dh, -c.rest_turn_rate * dt, c.rest_turn_rate * dt);
+      const double turn = model.rest_turn_rate() * dt;
+      data.setpoint_heading += std::clamp(dh, -turn, turn);
       target.position = data.setpoint;
       target.heading = data.setpoint_heading;
       const Eigen::Isometry3d face = robot::dh_club_pose(arm, q);

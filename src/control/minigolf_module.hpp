@@ -69,9 +69,15 @@ class ModuleModel {
   int ball_dof() const { return ball_dof_; }
   /// [m/s] club speed cap of this mode (speed_max, or kSafeEndpointSpeed in normal mode).
   double speed_cap() const { return speed_cap_; }
-  /// [m/s] the most the DS velocity may ask of the club (arm_speed_cap, and the mode's cap).
+  /// [m/s] the most the DS velocity may ask of the club at any angle (arm_speed_cap, and the
+  /// mode's cap).
   double club_speed_cap() const { return dynamic_cap_; }
+  /// [m/s] the same for hitting angle `angle` [rad] (lower for negative angles).
+  double club_speed_cap(double angle) const;
   const robot::Vector7& posture() const { return posture_; }  ///< [rad] null-space posture (7)
+  /// [m/s], [rad/s] rest set-point speed and turn rate of this mode (halved in normal mode).
+  double rest_speed() const { return rest_speed_; }
+  double rest_turn_rate() const { return rest_turn_rate_; }
 
  private:
   ModuleConfig config_;
@@ -84,6 +90,8 @@ class ModuleModel {
   int ball_dof_ = -1;
   double speed_cap_ = 3.0;
   double dynamic_cap_ = 3.0;
+  double rest_speed_ = 0.25;
+  double rest_turn_rate_ = 0.8;
 };
 
 /// Statistics of one core tick (for tests and the recorder).

@@ -64,6 +64,11 @@ void ModuleConfig::validate() const {
           "speed_min < speed_max <= 3.0 m/s (WAM maximum)", speed_max);
   require(std::isfinite(arm_speed_cap) && arm_speed_cap >= speed_min && arm_speed_cap <= 3.0,
           "arm_speed_cap", "speed_min..3.0 m/s", arm_speed_cap);
+  require(std::isfinite(arm_speed_cap_negative) && arm_speed_cap_negative >= speed_min &&
+              arm_speed_cap_negative <= arm_speed_cap,
+          "arm_speed_cap_negative", "speed_min..arm_speed_cap m/s", arm_speed_cap_negative);
+  require(std::isfinite(negative_cap_angle) && negative_cap_angle > 0.0 && negative_cap_angle <= 1.0,
+          "negative_cap_angle", "0..1 rad", negative_cap_angle);
   for (double v : rest_offset) require(std::isfinite(v), "rest_offset", "finite", v);
   require(rest_offset[0] < -0.05, "rest_offset", "x < -0.05 m (behind the ball)", rest_offset[0]);
   require(std::isfinite(club_face_offset) && club_face_offset >= 0.0 && club_face_offset < 0.1,
@@ -132,6 +137,7 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
   static const std::set<std::string> known{
       "field", "hitting_model", "mode", "core_rate", "robot_update_divider", "kp", "ki", "kd",
       "integral_limit", "fir_length", "angle_min", "angle_max", "speed_min", "speed_max", "arm_speed_cap",
+      "arm_speed_cap_negative", "negative_cap_angle",
       "rest_offset", "club_face_offset", "rest_speed", "rest_turn_rate", "rest_tolerance",
       "rest_heading_tolerance", "brake_lift_height", "brake_time", "stationary_threshold",
       "ball_moving_speed", "passed_distance", "max_hit_duration", "hit_ramp_time", "reference_leash",
@@ -161,6 +167,8 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
       else if (key == "speed_min") num(c.speed_min);
       else if (key == "speed_max") num(c.speed_max);
       else if (key == "arm_speed_cap") num(c.arm_speed_cap);
+      else if (key == "arm_speed_cap_negative") num(c.arm_speed_cap_negative);
+      else if (key == "negative_cap_angle") num(c.negative_cap_angle);
       else if (key == "rest_offset") {
         if (!v.IsSequence() || v.size() != 3)
           throw InputError(fmt::format("{}: rest_offset: expected a list of 3", source));

@@ -37,16 +37,22 @@ struct ModuleConfig {
   int fir_length = 5;
 
   /// Safe envelope of a hit request (thesis 4.3): angle [rad] about +z from psi0, club speed [m/s].
-  double angle_min = -0.6, angle_max = 0.6;
+  /// angle_min -0.3: hitting further away from the arm's side saturates J2 (raw torque demand
+  /// 10x the limits, launch errors 0.02-0.06 rad, joints 1.2x their velocity limits; measured).
+  double angle_min = -0.3, angle_max = 0.6;
   double speed_min = 0.3, speed_max = 3.0;
-  /// [m/s] what the DS may ask of the club in simulator mode: the default arm's joint velocity
-  /// limits bend the path above ~1.4 m/s (notes/control.md), so faster requests hit at this speed
-  /// along the right direction instead of off-centre.
-  double arm_speed_cap = 1.3;
+  /// [m/s] what the DS may ask of the club in simulator mode for hitting angles >= 0: above ~2.6
+  /// m/s the launch speed stops growing (notes/control.md). Faster requests hit at the cap along
+  /// the right direction instead of off-centre.
+  double arm_speed_cap = 2.6;
+  /// [m/s] the cap for angles <= -negative_cap_angle (linear in between): hitting away from the
+  /// arm's side, J2 saturates above ~1.3-1.6 m/s and the path bends (launch errors > 0.01 rad).
+  double arm_speed_cap_negative = 1.3;
+  double negative_cap_angle = 0.15;  ///< [rad]
 
   /// Rest pose of the DS point p (the point one club-face offset ahead of the face centre) relative
   /// to x*, in the hitting frame R(theta): behind the ball and above it [m].
-  std::array<double, 3> rest_offset{-0.25, 0.0, 0.12};
+  std::array<double, 3> rest_offset{-0.30, 0.0, 0.06};
   /// [m] p = face centre + offset psi: at impact the face (a plane through the face centre) meets
   /// the ball's back when p reaches the ball centre x*, so the offset is the ball radius.
   double club_face_offset = 0.021335;
@@ -56,13 +62,13 @@ struct ModuleConfig {
   double rest_heading_tolerance = 0.01;  ///< [rad]
 
   double brake_lift_height = 0.04;  ///< [m] club lifted this much while braking
-  double brake_time = 0.25;         ///< [s] velocity target ramps to zero over this time
+  double brake_time = 0.15;         ///< [s] velocity target ramps to zero over this time
   double stationary_threshold = 0.05;  ///< [rad/s] every joint slower: stationary
   double ball_moving_speed = 0.05;  ///< [m/s] ball faster than this: it was hit
   double passed_distance = 0.06;    ///< [m] DS point this far past x* without contact: passed
   /// [m] the integrated DS reference may lead the kinematic reference by at most this much.
   double reference_leash = 0.005;
-  double hit_ramp_time = 0.1;       ///< [s] DS velocity ramped in (smoothstep) from the rest pose
+  double hit_ramp_time = 0.2;       ///< [s] DS velocity ramped in (smoothstep) from the rest pose
   double max_hit_duration = 3.0;    ///< [s] a hit longer than this is a fault
 
   /// Faults: measured joint speed above this fraction of its limit, or a joint outside its range.

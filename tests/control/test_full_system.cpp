@@ -104,9 +104,9 @@ TEST(FullSystem, IdenticalPuttsGiveIdenticalBits) {
 
 // Faster requests than the arm can track hit at the arm's speed cap, still along theta.
 TEST(FullSystem, RequestsAboveTheArmCapHitAtTheCapAlongTheAngle) {
-  const double cap = rig().model.club_speed_cap();
-  const auto r = rig().putt(0.1, 2.5);
-  print("cap", 0.1, 2.5, r);
+  const double cap = rig().model.club_speed_cap(0.1);
+  const auto r = rig().putt(0.1, 3.0);
+  print("cap", 0.1, 3.0, r);
   ASSERT_TRUE(r.hit);
   EXPECT_LE(r.club.speed, 1.05 * cap);
   EXPECT_GT(r.club.speed, 0.9 * cap);
