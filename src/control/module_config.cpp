@@ -142,7 +142,7 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
       "rest_heading_tolerance", "brake_lift_height", "brake_time", "stationary_threshold",
       "ball_moving_speed", "passed_distance", "max_hit_duration", "hit_ramp_time", "reference_leash",
       "velocity_fault_factor", "params_model", "record", "perception_max_age", "ball_tolerance",
-      "overrun_streak_limit", "vision_port", "vision_sim_rate", "vision_sim_noise",
+      "overrun_streak_limit", "vision_address", "vision_port", "vision_sim_rate", "vision_sim_noise",
       "vision_sim_latency", "vision_sim_dropout"};
   std::string key;
   try {
@@ -193,6 +193,7 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
       else if (key == "perception_max_age") num(c.perception_max_age);
       else if (key == "ball_tolerance") num(c.ball_tolerance);
       else if (key == "overrun_streak_limit") c.overrun_streak_limit = v.as<int>();
+      else if (key == "vision_address") c.vision_address = v.as<std::string>();
       else if (key == "vision_port") c.vision_port = v.as<int>();
       else if (key == "vision_sim_rate") num(c.vision_sim_rate);
       else if (key == "vision_sim_noise") num(c.vision_sim_noise);

@@ -86,7 +86,9 @@ struct ModuleConfig {
   /// Real-time mode: this many core ticks in a row that miss their deadline are a fault.
   int overrun_streak_limit = 10;
 
-  /// Normal mode: UDP port the vision feed listens on, on 127.0.0.1 (0: any free port, printed).
+  /// Normal mode: UDP address and port the vision feed listens on (0: any free port, printed).
+  /// 127.0.0.1 takes only this machine's senders; a vision system elsewhere needs 0.0.0.0.
+  std::string vision_address = "127.0.0.1";
   int vision_port = 47001;
   /// The console's built-in vision simulator (`--vision-sim`): it observes the simulated world
   /// and publishes to vision_port over loopback, like `minigolf vision-sim`.

@@ -118,7 +118,7 @@ Session::Session(const ModuleConfig& config, const SessionOptions& options, std:
     feed_config.limits = perception::vision_limits_for(world_.field());
     feed_config.max_age = config_.perception_max_age;
     feed_ = std::make_unique<perception::VisionFeed>(
-        perception::UdpReceiver("127.0.0.1", static_cast<std::uint16_t>(config_.vision_port)),
+        perception::UdpReceiver(config_.vision_address, static_cast<std::uint16_t>(config_.vision_port)),
         feed_config);
     network_ = std::make_unique<perception::NetworkPerception>(*feed_);
     perception_ = network_.get();
@@ -201,8 +201,10 @@ void Session::tick_locked(bool lockstep) {
     e.to = md.state;
     e.reason = reason;
     push_event_locked(e);
-    if (before == ModuleState::kHitting && reason == Reason::kBallHit)
+    if (before == ModuleState::kHitting && reason == Reason::kBallHit) {
       tracker_.emplace(world_, d, sim::OutcomeRules{});
+      hit_time_ = d->time;
+    }
   } else if (reason != Reason::kNoChange && reason != Reason::kFault) {
     Event e;
     e.kind = Event::Kind::kRefused;
@@ -224,7 +226,7 @@ void Session::tick_locked(bool lockstep) {
       e.x = o.rest_position[0];
       e.y = o.rest_position[1];
       e.distance = std::hypot(o.rest_position[0] - hole[0], o.rest_position[1] - hole[1]);
-      e.duration = o.duration;
+      e.duration = d->time - hit_time_;
       push_event_locked(e);
       tracker_.reset();
     }

@@ -123,7 +123,8 @@ class Session {
   double angle_ = 0.0;  ///< [rad] the console's current hitting angle
   double speed_ = 1.0;  ///< [m/s] the console's current club speed
   bool hit_when_at_rest_ = false;
-  std::optional<sim::OutcomeTracker> tracker_;
+  std::optional<sim::OutcomeTracker> tracker_;  ///< the ball after a hit, until decided
+  double hit_time_ = 0.0;                        ///< [s] simulated time of that hit
   int steps_per_tick_ = 2;
   TimingHistogram timing_;
 
