@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The main job (for now): demonstration putts on each shipped field (ball only), two putts
-# hit by the simulated arm, outcomes printed, trajectories drawn in out/demo/fields.png.
+# The main job (for now): demonstration putts on each shipped field (ball only), putts hit by
+# the simulated arm, a scripted console session with a recording, the launch-accuracy study;
+# outcomes printed, trajectories drawn in out/demo/fields.png, the study in out/demo/study/.
 # The launch parameters below are example inputs; what happens is simulated when this runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,10 +32,30 @@ for p in "${putts[@]}"; do
   $bin putt --ball-only --field "$field" --angle "$angle" --speed "$speed"
   i=$((i + 1))
 done
-echo "== the arm hits (full system, fast lockstep mode, hole moved within the arm's reach)"
-$bin putt --field flat --hole 0.62,0 --angle 0 --speed 1.2
-$bin putt --field flat --hole 0.55,0.1 --angle 0.18 --speed 1.2
-$bin putt --field flat --hole 0.62,0 --angle 0 --speed 1.2 --json >"$out/arm_putt_flat.json"
+echo "== the arm hits (full system, fast lockstep mode)"
+$bin putt --field flat --angle 0.02 --speed 2.6
+$bin putt --field flat --hole 1.2,0.3 --angle 0.25 --speed 2.0
+$bin putt --field flat --angle 0.02 --speed 2.6 --json >"$out/arm_putt_flat.json"
+echo "== a scripted console session (lockstep), recorded to $out/console_recording.csv"
+$bin console --echo <<EOF
+record on $out/console_recording.csv
+angle 0.25
+speed 2.0
+hole 1.2 0.3
+hit
+wait 3
+reset
+angle 0.02
+speed 2.6
+hole 2.0 0.0
+hit
+wait 4
+status
+record off
+quit
+EOF
+echo "== launch accuracy (thesis 6.1): 10 hits at -10, 0, +10 deg with execution noise"
+$bin study launch-error --torque-noise 0.001 --out "$out/study" --plot
 for field in flat multiple-hills regular-hill arctan; do
   $bin field heights "$field" -o "$out/heights_${field}.csv" --cell 0.02
   $bin field show "$field" --json >"$out/field_${field}.json"
