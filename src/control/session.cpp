@@ -577,9 +577,7 @@ void Session::do_command(const ConsoleCommand& command) {
             say("load hitting refused: send idle first (the module must be Idle)");
             return;
           }
-          module_reset(*model, *data, d_.get());
-          data->seen = md_->seen;
-          data->seen_tick = md_->seen_tick >= 0 ? 0 : -1;
+          module_reset(*model, *data, d_.get());  // perception stale until the next robot update
           model_.swap(model);
           md_.swap(data);
           say(fmt::format("hitting model loaded: {}", cmd.path));
