@@ -87,6 +87,13 @@ int main(int argc, char** argv) {
         [&](const control::FullPuttResult& x, std::size_t, std::size_t) {
           return fmt("%.2f", x.rest_time) + " / " + fmt("%.2f", x.hit_time);
         });
+  int single = 0, total = 0;
+  for (const auto& row : r)
+    for (const auto& x : row) {
+      ++total;
+      single += x.club_ball_touches == 1;
+    }
+  std::printf("\nThe club touched the ball exactly once in %d of %d putts\n", single, total);
   double p99 = 0, worst = 0;
   int overruns = 0, ticks = 0;
   for (const auto& row : r)

@@ -93,6 +93,14 @@ void track_ratios(const ModuleModel& model, const mjData* d, const ModuleData& d
         std::min(q[j] - arm.position_lower()[j], arm.position_upper()[j] - q[j]));
   }
   if (data.last.fault) r.faulted = true;
+  bool touching = false;
+  for (int i = 0; i < d->ncon && !touching; ++i) {
+    const mjContact& c = d->contact[i];
+    touching = (c.geom1 == model.club_geom() && c.geom2 == model.ball_geom()) ||
+               (c.geom2 == model.club_geom() && c.geom1 == model.ball_geom());
+  }
+  if (touching && !r.touching_ball) ++r.club_ball_touches;
+  r.touching_ball = touching;
 }
 
 // --- Execution noise (FullPuttOptions::torque_noise / placement_noise). Disabled at zero: then

@@ -101,6 +101,9 @@ struct FullPuttResult {
   double rest_time = 0.0;           ///< [s] simulated time to reach the rest pose
   double hit_time = 0.0;            ///< [s] from the hit request to contact
   bool faulted = false;             ///< a fault was observed during the run
+  /// Separate club-ball contacts over the run (1: the ball was touched once, as it should be).
+  int club_ball_touches = 0;
+  bool touching_ball = false;  ///< (bookkeeping of the count: in contact at the last step)
 };
 
 /// Resets `d`, sets the hole, puts the arm at the default rest posture, goes to the rest pose for

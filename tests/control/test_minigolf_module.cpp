@@ -173,3 +173,24 @@ TEST(MinigolfModule, OverrunStreakFaultBrakesAHit) {
 
 }  // namespace
 }  // namespace mg::control
+
+namespace mg::control {
+namespace {
+
+// Idle is gravity compensation: the arm stays where it is left (the controller's model equals the
+// plant, so any drift would be a modelling error).
+TEST(MinigolfModule, IdleHoldsTheArmWhereItIsLeft) {
+  Bench b;
+  robot::Vector7 q;
+  q << 0.3, -0.4, 0.2, 1.2, -0.3, 0.4, 0.1;
+  robot::set_joint_positions(b.model.arm(), b.data.get(), q);
+  mj_forward(b.world.model(), b.data.get());
+  module_reset(b.model, b.md, b.data.get());
+  for (int i = 0; i < 500; ++i) b.tick();  // 1 s
+  EXPECT_EQ(b.md.state, ModuleState::kIdle);
+  const robot::Vector7 after = robot::joint_positions(b.model.arm(), b.data.get());
+  EXPECT_LT((after - q).cwiseAbs().maxCoeff(), 1e-3) << (after - q).transpose();
+}
+
+}  // namespace
+}  // namespace mg::control
