@@ -202,7 +202,18 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   const long hit_steps = std::lround(options.hit_timeout / dt);
   double t_request = d->time;
   bool contact = false;
+  // The face velocity before the step in which the club meets the ball: the impact velocity
+  // (after that step the contact spring has already slowed the club).
+  const auto face_velocity = [&] {
+    Eigen::Isometry3d pose;
+    robot::Matrix67 jac;
+    const robot::Vector7 q = robot::joint_positions(model.arm(), d);
+    robot::dh_club_jacobian(model.arm(), q, pose, jac);
+    return Eigen::Vector3d(jac.topRows<3>() * robot::joint_velocities(model.arm(), d));
+  };
+  Eigen::Vector3d club_velocity = Eigen::Vector3d::Zero();
   for (long k = 0; k < hit_steps && !contact; ++k) {
+    club_velocity = face_velocity();
     step();
     track_ratios(model, d, run.module(), r);
     if (k == 2 && run.module().state != ModuleState::kHitting) {
@@ -243,15 +254,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   }
   r.hit = true;
   r.hit_time = d->time - t_request;
-  {
-    // Club face velocity from the Jacobian at the measured state.
-    Eigen::Isometry3d pose;
-    robot::Matrix67 jac;
-    const robot::Vector7 q = robot::joint_positions(model.arm(), d);
-    robot::dh_club_jacobian(model.arm(), q, pose, jac);
-    const Eigen::Vector3d v = jac.topRows<3>() * robot::joint_velocities(model.arm(), d);
-    r.club = {std::atan2(v.y(), v.x()), v.norm()};
-  }
+  r.club = {std::atan2(club_velocity.y(), club_velocity.x()), club_velocity.norm()};
 
   // The ball rolls; the module brakes and idles meanwhile.
   sim::OutcomeTracker tracker(world, d, options.rules);

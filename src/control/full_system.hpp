@@ -90,7 +90,7 @@ struct FullPuttResult {
   std::array<double, 2> ball_start{0.0, 0.0};  ///< [m] where the ball was placed (tee + noise)
   bool hit_refused = false;         ///< the module refused the request (envelope, NaN)
   sim::PuttOutcome outcome;  ///< the ball's outcome; duration [s] and steps count from first contact
-  AngleSpeed club;                  ///< club face velocity at first contact (speed: 3-D norm)
+  AngleSpeed club;  ///< club face velocity just before first contact (speed: 3-D norm)
   AngleSpeed launch;                ///< ball velocity launch_delay after contact (horizontal)
   CoreTiming timing;
   double max_torque_ratio = 0.0;    ///< max |tau_j| / limit_j of the applied torques

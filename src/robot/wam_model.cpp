@@ -10,6 +10,7 @@
 #include "core/check.hpp"
 #include "core/error.hpp"
 #include "robot/kinematics.hpp"
+#include "sim/world.hpp"
 
 namespace mg::robot {
 namespace {
@@ -71,10 +72,15 @@ std::string club_body(const ClubGeometry& c) {
       R"(<geom name="club_shaft" type="capsule" fromto="0 0 0 0 0 {:.17g}" size="{:.17g}" rgba="0.6 0.6 0.65 1" {}/>)",
       c.shaft_length, c.shaft_radius, kVisual);
   // The head is the only colliding part of the arm: bit 4 meets the ball, nothing else.
+  // Its contact parameters win over the ball's (priority): a spring-damper with the face's
+  // restitution, MuJoCo solref = (time constant, damping ratio) with natural frequency
+  // 1 / (time constant * damping ratio) = 2 pi / face_contact_period.
+  const double zeta = sim::damping_ratio_for_restitution(c.face_restitution);
+  const double time_constant = c.face_contact_period / (2.0 * kPi * zeta);
   out += fmt::format(
-      R"(<geom name="club_head" type="box" pos="{}" quat="{}" size="{:.17g} {:.17g} {:.17g}" contype="4" conaffinity="0" condim="3" mass="0" rgba="0.15 0.15 0.15 1"/>)",
+      R"(<geom name="club_head" type="box" pos="{}" quat="{}" size="{:.17g} {:.17g} {:.17g}" contype="4" conaffinity="0" condim="3" priority="2" friction="0.3 0 0" solref="{:.17g} {:.17g}" mass="0" rgba="0.15 0.15 0.15 1"/>)",
       vec3(head_centre), quat(face.linear()), 0.5 * c.head_thickness, 0.5 * c.head_length,
-      0.5 * c.head_height);
+      0.5 * c.head_height, time_constant, zeta);
   out +=
       fmt::format(R"(<site name="club_face" pos="{}" quat="{}" size="0.005" rgba="1 0.2 0.2 1"/>)",
                   vec3(face.translation()), quat(face.linear()));

@@ -108,6 +108,12 @@ struct ClubGeometry {
   double head_thickness = 0.03;  ///< [m] face to back
   double head_height = 0.025;    ///< [m] sole to top
   double head_mass = 0.30;       ///< [kg]
+  /// Coefficient of restitution of face and ball (a putter and a golf ball: ~0.8; putters give
+  /// ball speed / club speed 1.6-1.9, notes/robot.md).
+  double face_restitution = 0.8;
+  /// [s] natural period of the face-ball contact spring: 8 physics steps of 1 ms, so the impact
+  /// is resolved (a stiffer contact would bounce numerically).
+  double face_contact_period = 0.008;
 };
 
 }  // namespace mg::robot

@@ -44,14 +44,13 @@ int hole_contact_filter(const mjModel* m, mjData* d, int g1, int g2) {
   return dx * dx + dy * dy < radius * radius ? 1 : 0;
 }
 
-// Damping ratio of a spring-damper contact whose bounce has restitution e.
+}  // namespace
+
 double damping_ratio_for_restitution(double e) {
   if (e <= 0.0) return 1.0;
   const double l = std::log(e);
   return -l / std::sqrt(kPi * kPi + l * l);
 }
-
-}  // namespace
 
 void WorldOptions::validate() const {
   require_in_range("world.timestep", timestep, 1e-4, 0.002);

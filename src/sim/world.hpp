@@ -68,6 +68,10 @@ struct WorldIds {
   int first_wall_mocap = -1;  ///< cup wall segments are consecutive mocap bodies
 };
 
+/// Damping ratio of a spring-damper contact (MuJoCo solref's second number) whose bounce has
+/// coefficient of restitution `e` (1 for e <= 0: no bounce).
+double damping_ratio_for_restitution(double e);
+
 class World {
  public:
   /// Builds the model for `field` (validated). Throws `InputError` for an unusable field.

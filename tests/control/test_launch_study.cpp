@@ -102,8 +102,8 @@ TEST(LaunchStudy, NoiseIsSeededAndSpreadsTheLaunch) {
   for (const LaunchHit& h : a.hits) {
     EXPECT_TRUE(h.hit);
     EXPECT_LT(std::abs(h.club_speed_error), 0.1);
-    EXPECT_GT(h.launch_club_ratio, 0.8);
-    EXPECT_LT(h.launch_club_ratio, 1.0);
+    EXPECT_GT(h.launch_club_ratio, 1.3);  // a putter-like impact (restitution 0.8)
+    EXPECT_LT(h.launch_club_ratio, 1.9);
     EXPECT_LT(std::hypot(h.ball_start[0], h.ball_start[1]), 0.01);
     EXPECT_NE(h.ball_start[1], 0.0);
   }
