@@ -132,7 +132,7 @@ Session::Session(const ModuleConfig& config, const SessionOptions& options, std:
       publisher_ = std::make_unique<perception::VisionPublisher>("127.0.0.1", feed_->port(), pc);
     }
   } else if (options_.vision_sim) {
-    throw InputError("console: --vision-sim needs mode: normal in the config");
+    throw InputError("console: --vision-sim needs normal mode (--mode normal, or mode: normal in the config)");
   }
   if (!config_.params_model.empty()) load_params(config_.params_model);
   if (!config_.record.empty()) recorder_.start(config_.record);
