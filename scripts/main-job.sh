@@ -15,13 +15,13 @@ $bin field list
 # field  angle[rad]  speed[m/s]
 putts=(
   "flat 0.00 2.5"
-  "flat 0.12 2.2"
-  "multiple-hills -0.03 2.9"
-  "multiple-hills 0.10 2.6"
+  "flat 0.01 2.6"
+  "multiple-hills -0.03 2.8"
+  "multiple-hills 0.00 2.9"
   "regular-hill 0.00 2.8"
-  "regular-hill 0.03 2.3"
-  "arctan -0.01 2.8"
-  "arctan 0.37 3.1"
+  "regular-hill 0.01 2.6"
+  "arctan 0.00 2.7"
+  "arctan 0.01 2.8"
 )
 echo "== demo putts (ball only)"
 i=0
@@ -36,6 +36,9 @@ echo "== the arm hits (full system, fast lockstep mode)"
 $bin putt --field flat --angle 0.02 --speed 2.6
 $bin putt --field flat --hole 1.2,0.3 --angle 0.25 --speed 2.0
 $bin putt --field flat --angle 0.02 --speed 2.6 --json >"$out/arm_putt_flat.json"
+$bin putt --field multiple-hills --angle 0.01 --speed 1.8
+$bin putt --field regular-hill --angle 0.01 --speed 1.65
+$bin putt --field arctan --angle 0.03 --speed 1.65
 echo "== a scripted console session (lockstep), recorded to $out/console_recording.csv"
 $bin console --echo <<EOF
 record on $out/console_recording.csv

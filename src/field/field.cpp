@@ -131,6 +131,16 @@ SurfaceTerm parse_term(MapReader r, const Field& field, const std::filesystem::p
     t.scale_x = r.number("scale_x");
     t.scale_y = r.number("scale_y", 0.0);
     term = t;
+  } else if (type == "flatten") {
+    FlattenTerm t;
+    t.center = r.numbers<2>("center", field.tee);
+    t.radius = r.number("radius", t.radius);
+    t.blend_radius = r.number("blend_radius", t.blend_radius);
+    if (!(t.radius >= 0.0)) r.fail(r.full("radius"), "expected a number >= 0");
+    if (!(t.blend_radius > t.radius))
+      r.fail(r.full("blend_radius"),
+             fmt::format("expected more than radius ({}), got {}", t.radius, t.blend_radius));
+    term = t;
   } else if (type == "heightmap") {
     std::filesystem::path file = r.text("file", "");
     if (file.empty()) r.fail(r.full("file"), "missing (required)");
@@ -145,7 +155,7 @@ SurfaceTerm parse_term(MapReader r, const Field& field, const std::filesystem::p
     }
   } else {
     r.fail(r.full("type"), fmt::format("unknown surface type '{}' (expected plane, bump, hill, "
-                                       "arctan or heightmap)", type));
+                                       "arctan, heightmap or flatten)", type));
   }
   r.finish();
   return term;

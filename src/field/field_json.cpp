@@ -21,6 +21,10 @@ struct TermToJson {
     return {{"type", "arctan"}, {"center", t.center}, {"amplitude", t.amplitude},
             {"scale_x", t.scale_x}, {"scale_y", t.scale_y}};
   }
+  nlohmann::json operator()(const FlattenTerm& t) const {
+    return {{"type", "flatten"}, {"center", t.center}, {"radius", t.radius},
+            {"blend_radius", t.blend_radius}};
+  }
   nlohmann::json operator()(const HeightmapTerm& t) const {
     return {{"type", "heightmap"}, {"file", t.source}, {"bounds", t.bounds}, {"rows", t.rows},
             {"cols", t.cols}};

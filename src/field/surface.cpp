@@ -42,6 +42,7 @@ struct HeightVisitor {
     return (1 - fy) * ((1 - fx) * h(r0, c0) + fx * h(r0, c0 + 1)) +
            fy * ((1 - fx) * h(r0 + 1, c0) + fx * h(r0 + 1, c0 + 1));
   }
+  double operator()(const FlattenTerm&) const { return 0.0; }  // handled by Surface
   void grid_coords(const HeightmapTerm& t, double& gx, double& gy) const {
     gx = (x - t.bounds[0]) / (t.bounds[1] - t.bounds[0]) * (t.cols - 1);
     gy = (y - t.bounds[2]) / (t.bounds[3] - t.bounds[2]) * (t.rows - 1);
@@ -76,7 +77,22 @@ struct GradientVisitor {
     return {(HeightVisitor{x + hx, y}(t) - HeightVisitor{x - hx, y}(t)) / (2 * hx),
             (HeightVisitor{x, y + hy}(t) - HeightVisitor{x, y - hy}(t)) / (2 * hy)};
   }
+  std::array<double, 2> operator()(const FlattenTerm&) const { return {0.0, 0.0}; }
 };
+
+/// The pad's weight w(r) and dw/dr: 1 inside `radius`, a cubic smoothstep down to 0 at
+/// `blend_radius` (C1: w' = 0 at both ends).
+void pad_weight(const FlattenTerm& t, double r, double& w, double& dw_dr) {
+  if (r <= t.radius) {
+    w = 1.0, dw_dr = 0.0;
+  } else if (r >= t.blend_radius) {
+    w = 0.0, dw_dr = 0.0;
+  } else {
+    const double width = t.blend_radius - t.radius, s = (r - t.radius) / width;
+    w = 1.0 - s * s * (3.0 - 2.0 * s);
+    dw_dr = -6.0 * s * (1.0 - s) / width;
+  }
+}
 
 HeightmapTerm load_png_heightmap(const std::string& path, double z_min, double z_max) {
   png_image image{};
@@ -119,19 +135,52 @@ HeightmapTerm load_csv_heightmap(const std::string& path) {
 
 }  // namespace
 
-double Surface::height(double x, double y) const {
+double Surface::partial_height(std::size_t n, double x, double y) const {
   double z = 0.0;
-  for (const auto& term : terms) z += std::visit(HeightVisitor{x, y}, term);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (const auto* pad = std::get_if<FlattenTerm>(&terms[i])) {
+      const double r = std::hypot(x - pad->center[0], y - pad->center[1]);
+      if (r >= pad->blend_radius) continue;
+      double w, dw_dr;
+      pad_weight(*pad, r, w, dw_dr);
+      z += w * (partial_height(i, pad->center[0], pad->center[1]) - z);
+    } else {
+      z += std::visit(HeightVisitor{x, y}, terms[i]);
+    }
+  }
   return z;
 }
 
-std::array<double, 2> Surface::gradient(double x, double y) const {
-  std::array<double, 2> g{0.0, 0.0};
-  for (const auto& term : terms) {
-    const auto gt = std::visit(GradientVisitor{x, y}, term);
-    g[0] += gt[0];
-    g[1] += gt[1];
+void Surface::evaluate(std::size_t n, double x, double y, double& z,
+                       std::array<double, 2>& g) const {
+  z = 0.0;
+  g = {0.0, 0.0};
+  for (std::size_t i = 0; i < n; ++i) {
+    if (const auto* pad = std::get_if<FlattenTerm>(&terms[i])) {
+      const double dx = x - pad->center[0], dy = y - pad->center[1], r = std::hypot(dx, dy);
+      if (r >= pad->blend_radius) continue;
+      double w, dw_dr;
+      pad_weight(*pad, r, w, dw_dr);
+      const double dz = partial_height(i, pad->center[0], pad->center[1]) - z;
+      // grad(z + w dz) = (1 - w) grad z + dz grad w, grad w = w'(r) (dx, dy) / r.
+      const double k = r > 0.0 ? dw_dr / r : 0.0;
+      g = {(1.0 - w) * g[0] + dz * k * dx, (1.0 - w) * g[1] + dz * k * dy};
+      z += w * dz;
+    } else {
+      z += std::visit(HeightVisitor{x, y}, terms[i]);
+      const auto gt = std::visit(GradientVisitor{x, y}, terms[i]);
+      g[0] += gt[0];
+      g[1] += gt[1];
+    }
   }
+}
+
+double Surface::height(double x, double y) const { return partial_height(terms.size(), x, y); }
+
+std::array<double, 2> Surface::gradient(double x, double y) const {
+  double z;
+  std::array<double, 2> g;
+  evaluate(terms.size(), x, y, z, g);
   return g;
 }
 

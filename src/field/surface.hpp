@@ -53,9 +53,21 @@ struct HeightmapTerm {
   std::vector<double> heights;                 ///< rows*cols, row-major, row 0 at y_min [m]
 };
 
-using SurfaceTerm = std::variant<PlaneTerm, BumpTerm, HillTerm, ArctanTerm, HeightmapTerm>;
+/// A level pad (e.g. the tee): levels the sum of the terms *before* it to that sum's height at
+/// `center`, z_c. With w(r) = 1 for r <= radius, a cubic smoothstep falling to 0 at
+/// `blend_radius`, and r the distance from `center`:  z' = z + w(r) (z_c - z), so
+/// grad z' = (1 - w) grad z + (z_c - z) grad w. C1 wherever the terms before it are C1. Terms
+/// after it are added unchanged.
+struct FlattenTerm {
+  std::array<double, 2> center{0.0, 0.0};  ///< [m] (in field files: default the tee)
+  double radius = 0.03;                    ///< [m] exactly level inside
+  double blend_radius = 0.1;               ///< [m] unchanged surface outside (> radius)
+};
 
-/// The lane surface: the sum of its terms.
+using SurfaceTerm =
+    std::variant<PlaneTerm, BumpTerm, HillTerm, ArctanTerm, HeightmapTerm, FlattenTerm>;
+
+/// The lane surface: the sum of its terms (a `FlattenTerm` levels the partial sum before it).
 struct Surface {
   std::vector<SurfaceTerm> terms;
 
@@ -63,6 +75,11 @@ struct Surface {
   double height(double x, double y) const;
   /// (dz/dx, dz/dy) at (x, y), analytic.
   std::array<double, 2> gradient(double x, double y) const;
+
+ private:
+  /// Height and gradient of the first `n` terms at (x, y).
+  void evaluate(std::size_t n, double x, double y, double& z, std::array<double, 2>& g) const;
+  double partial_height(std::size_t n, double x, double y) const;
 };
 
 /// Loads a heightmap grid from a CSV file (rows of heights in metres, first row at y_min, no

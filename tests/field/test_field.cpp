@@ -70,6 +70,22 @@ TEST(Field, BadInputNamesTheProblem) {
   expect_error_mentions(edited("surface:\n  - {type: plane}", "surface: []"), "surface");
 }
 
+TEST(Field, FlattenTermDefaultsToTheTeeAndChecksItsRadii) {
+  const Field f = parse(edited("{type: plane}", "{type: plane, slope_x: 0.04}\n  - {type: flatten}"));
+  ASSERT_EQ(f.surface.terms.size(), 2u);
+  const auto& pad = std::get<FlattenTerm>(f.surface.terms[1]);
+  EXPECT_EQ(pad.center, f.tee);
+  EXPECT_EQ(f.surface.gradient(f.tee[0], f.tee[1])[0], 0.0);
+  EXPECT_NEAR(f.surface.gradient(0.5, 0.0)[0], 0.04, 1e-15);
+  expect_error_mentions(edited("{type: plane}", "{type: plane}\n  - {type: flatten, radius: -1}"),
+                        "surface[1].radius");
+  expect_error_mentions(
+      edited("{type: plane}", "{type: plane}\n  - {type: flatten, radius: 0.1, blend_radius: 0.05}"),
+      "surface[1].blend_radius");
+  expect_error_mentions(edited("{type: plane}", "{type: plane}\n  - {type: flatten, size: 1}"),
+                        "surface[1].size");
+}
+
 TEST(Field, UnknownShippedNameListsTheShippedOnes) {
   try {
     load_field("no-such-field");

@@ -1,5 +1,6 @@
 #include "field/surface.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +29,66 @@ TEST(Surface, GradientMatchesFiniteDifferences) {
       EXPECT_NEAR(g[0], fx, 1e-6) << x << "," << y;
       EXPECT_NEAR(g[1], fy, 1e-6) << x << "," << y;
     }
+}
+
+// The level pad: gradient vs finite differences over the whole blend ring and beyond, on a
+// surface as steep at the pad as the arctan field's tee, with terms before and after it.
+TEST(Surface, FlattenGradientMatchesFiniteDifferences) {
+  Surface s;
+  s.terms.push_back(ArctanTerm{{1.2, 0.0}, 0.03, 3.0, 4.0});
+  s.terms.push_back(PlaneTerm{0.0, 0.04, 0.0});
+  s.terms.push_back(FlattenTerm{{0.0, 0.0}, 0.03, 0.1});
+  s.terms.push_back(BumpTerm{{0.8, 0.2}, 0.035, {0.14, 0.12}});  // after the pad: unchanged
+  const double h = 1e-6;
+  int in_ring = 0;
+  for (double x = -0.137; x < 0.14; x += 0.0093)
+    for (double y = -0.131; y < 0.14; y += 0.0089) {
+      const auto g = s.gradient(x, y);
+      const double fx = (s.height(x + h, y) - s.height(x - h, y)) / (2 * h);
+      const double fy = (s.height(x, y + h) - s.height(x, y - h)) / (2 * h);
+      EXPECT_NEAR(g[0], fx, 1e-7) << x << "," << y;
+      EXPECT_NEAR(g[1], fy, 1e-7) << x << "," << y;
+      const double r = std::hypot(x, y);
+      in_ring += r > 0.03 && r < 0.1;
+    }
+  EXPECT_GT(in_ring, 200);
+}
+
+TEST(Surface, FlattenLevelsTheTermsBeforeItAndBlendsC1) {
+  const ArctanTerm saddle{{1.2, 0.0}, 0.03, 3.0, 4.0};
+  const FlattenTerm pad{{0.0, 0.0}, 0.03, 0.1};
+  const Surface raw{{saddle}};
+  const Surface padded{{saddle, pad, PlaneTerm{0.01, 0.0, 0.0}}};
+  const double z0 = raw.height(0.0, 0.0) + 0.01;
+  // Level inside the radius: the height of the pad centre, no slope.
+  for (double a = 0.0; a < 6.3; a += 0.5) {
+    const double x = 0.029 * std::cos(a), y = 0.029 * std::sin(a);
+    EXPECT_NEAR(padded.height(x, y), z0, 1e-15);
+    EXPECT_EQ(padded.gradient(x, y)[0], 0.0);
+    EXPECT_EQ(padded.gradient(x, y)[1], 0.0);
+    // Unchanged from the blend radius on.
+    const double X = 0.1 * std::cos(a), Y = 0.1 * std::sin(a);
+    EXPECT_NEAR(padded.height(X, Y), raw.height(X, Y) + 0.01, 1e-15);
+    EXPECT_NEAR(padded.gradient(X, Y)[1], raw.gradient(X, Y)[1], 1e-15);
+  }
+  // C1: no jump in height or slope across either edge of the blend ring.
+  for (double r0 : {0.03, 0.1}) {
+    const double e = 1e-7;
+    const auto gi = padded.gradient(0.0, r0 - e), go = padded.gradient(0.0, r0 + e);
+    EXPECT_NEAR(padded.height(0.0, r0 - e), padded.height(0.0, r0 + e), 1e-6) << r0;  // slope * 2e
+    EXPECT_NEAR(gi[0], go[0], 1e-5) << r0;
+    EXPECT_NEAR(gi[1], go[1], 1e-5) << r0;
+  }
+  // The ring is at most 2.5 times as steep as the slope it replaces.
+  double steepest = 0.0, raw_steepest = 0.0;
+  for (double r = 0.0; r < 0.1; r += 0.001)
+    for (double a = 0.0; a < 6.3; a += 0.1) {
+      const auto g = padded.gradient(r * std::cos(a), r * std::sin(a));
+      const auto gr = raw.gradient(r * std::cos(a), r * std::sin(a));
+      steepest = std::max(steepest, std::hypot(g[0], g[1]));
+      raw_steepest = std::max(raw_steepest, std::hypot(gr[0], gr[1]));
+    }
+  EXPECT_LT(steepest, 2.5 * raw_steepest);
 }
 
 TEST(Surface, TermsHaveTheirDocumentedShape) {
