@@ -33,9 +33,9 @@ for p in "${putts[@]}"; do
   i=$((i + 1))
 done
 echo "== the arm hits (full system, fast lockstep mode)"
-$bin putt --field flat --angle 0.02 --speed 2.6
-$bin putt --field flat --hole 1.2,0.3 --angle 0.25 --speed 2.0
-$bin putt --field flat --angle 0.02 --speed 2.6 --json >"$out/arm_putt_flat.json"
+$bin putt --field flat --angle 0.01 --speed 1.6
+$bin putt --field flat --hole 1.2,0.3 --angle 0.25 --speed 1.25
+$bin putt --field flat --angle 0.01 --speed 1.6 --json >"$out/arm_putt_flat.json"
 $bin putt --field multiple-hills --angle 0.01 --speed 1.8
 $bin putt --field regular-hill --angle 0.01 --speed 1.65
 $bin putt --field arctan --angle 0.03 --speed 1.65
@@ -43,13 +43,13 @@ echo "== a scripted console session (lockstep), recorded to $out/console_recordi
 $bin console --echo <<EOF
 record on $out/console_recording.csv
 angle 0.25
-speed 2.0
+speed 1.25
 hole 1.2 0.3
 hit
 wait 3
 reset
-angle 0.02
-speed 2.6
+angle 0.01
+speed 1.6
 hole 2.0 0.0
 hit
 wait 4
