@@ -9,6 +9,26 @@
 
 namespace mg::cli {
 
+double parse_number(const std::string& what, const std::string& text) {
+  double v = 0.0;
+  const char* first = text.data();
+  if (!text.empty() && text.front() == '+') ++first;
+  auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size())
+    throw InputError(fmt::format("{}: expected a number, got '{}'", what, text));
+  if (!std::isfinite(v))
+    throw InputError(fmt::format("{}: expected a finite number, got '{}'", what, text));
+  return v;
+}
+
+std::uint64_t parse_unsigned(const std::string& what, const std::string& text) {
+  std::uint64_t v = 0;
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size())
+    throw InputError(fmt::format("{}: expected a non-negative integer, got '{}'", what, text));
+  return v;
+}
+
 template <std::size_t N>
 std::array<double, N> parse_vector(const std::string& what, const std::string& text) {
   std::array<double, N> out{};
@@ -18,14 +38,7 @@ std::array<double, N> parse_vector(const std::string& what, const std::string& t
     const bool last = i + 1 == N;
     if (last != (comma == std::string::npos))
       throw InputError(fmt::format("{}: expected {} comma-separated numbers, got '{}'", what, N, text));
-    const std::string cell = text.substr(start, last ? std::string::npos : comma - start);
-    const char* first = cell.data();
-    if (!cell.empty() && cell.front() == '+') ++first;
-    auto [ptr, ec] = std::from_chars(first, cell.data() + cell.size(), out[i]);
-    if (cell.empty() || ec != std::errc() || ptr != cell.data() + cell.size())
-      throw InputError(fmt::format("{}: expected a number, got '{}'", what, cell));
-    if (!std::isfinite(out[i]))
-      throw InputError(fmt::format("{}: expected a finite number, got '{}'", what, cell));
+    out[i] = parse_number(what, text.substr(start, last ? std::string::npos : comma - start));
     start = comma + 1;
   }
   return out;

@@ -2,7 +2,6 @@
 //   [--torque-noise 0.01] [--placement-noise 0.001] [--seed 1] [--out DIR] [--json] [--plot]
 // The launch-error study of thesis 6.1 (control/launch_study.hpp): progress on stderr, a Markdown
 // table (or --json) on stdout, DIR/launch_error.{csv,md} and with --plot DIR/launch_error.png.
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -27,25 +26,6 @@ namespace mg::cli {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
-double parse_number(const std::string& what, const std::string& text) {
-  double v = 0.0;
-  const char* first = text.data();
-  if (!text.empty() && text.front() == '+') ++first;
-  auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size())
-    throw InputError(fmt::format("{}: expected a number, got '{}'", what, text));
-  if (!std::isfinite(v)) throw InputError(fmt::format("{}: expected a finite number, got '{}'", what, text));
-  return v;
-}
-
-std::uint64_t parse_unsigned(const std::string& what, const std::string& text) {
-  std::uint64_t v = 0;
-  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size())
-    throw InputError(fmt::format("{}: expected a non-negative integer, got '{}'", what, text));
-  return v;
-}
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 

@@ -63,6 +63,14 @@ struct Bench {
     world.step(data.get());
     return made;
   }
+  /// Rest at angle 0, hit at 1 m/s, 20 ticks into the hit; true if the module is then Hitting.
+  bool start_hit() {
+    if (!request_rest(model, md, 0.0)) return false;
+    run_until([&] { return md.at_rest_pose; }, 3000);
+    if (!request_hit(model, md, 0.0, 1.0)) return false;
+    for (int i = 0; i < 20; ++i) tick();
+    return md.state == ModuleState::kHitting;
+  }
   /// Ticks until `done` or `max_ticks`; returns allocations inside core_update.
   template <class Done>
   long run_until(Done done, int max_ticks) {
@@ -92,11 +100,7 @@ TEST(MinigolfModule, WholeHitCycleWithoutAllocation) {
 
 TEST(MinigolfModule, NanMeasurementDuringHitBrakesWithFiniteTorques) {
   Bench b;
-  ASSERT_TRUE(request_rest(b.model, b.md, 0.0));
-  b.run_until([&] { return b.md.at_rest_pose; }, 3000);
-  ASSERT_TRUE(request_hit(b.model, b.md, 0.0, 1.0));
-  for (int i = 0; i < 20; ++i) b.tick();
-  ASSERT_EQ(b.md.state, ModuleState::kHitting);
+  ASSERT_TRUE(b.start_hit());
   b.data->qvel[b.model.arm().dof_address(3)] = std::numeric_limits<double>::quiet_NaN();
   core_update(b.model, b.md, b.data.get());
   EXPECT_EQ(b.md.state, ModuleState::kBraking);
@@ -154,11 +158,7 @@ namespace {
 
 TEST(MinigolfModule, OverrunStreakFaultBrakesAHit) {
   Bench b;
-  ASSERT_TRUE(request_rest(b.model, b.md, 0.0));
-  b.run_until([&] { return b.md.at_rest_pose; }, 3000);
-  ASSERT_TRUE(request_hit(b.model, b.md, 0.0, 1.0));
-  for (int i = 0; i < 20; ++i) b.tick();
-  ASSERT_EQ(b.md.state, ModuleState::kHitting);
+  ASSERT_TRUE(b.start_hit());
   b.md.overrun_fault = true;  // what the real-time scheduler sets after a streak of misses
   b.tick();
   EXPECT_EQ(b.md.state, ModuleState::kBraking);

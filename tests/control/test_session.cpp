@@ -47,6 +47,14 @@ std::filesystem::path temp_dir() {
   return dir;
 }
 
+/// Normal mode listening on any free loopback port.
+ModuleConfig normal_mode() {
+  ModuleConfig config;
+  config.mode = ModuleMode::kNormal;
+  config.vision_port = 0;
+  return config;
+}
+
 TEST(Session, ScriptedSessionGoesRestHittingBrakingIdle) {
   const std::string out =
       run_script("rest\nwait 1.5\nangle 0.1\nspeed 1.0\nhit\nwait 3\nstatus\nquit\n");
@@ -123,9 +131,7 @@ TEST(Session, RecorderWritesOneRowPerRobotUpdate) {
 }
 
 TEST(Session, NormalModeHitsWithTheBuiltInVisionSimulator) {
-  ModuleConfig config;
-  config.mode = ModuleMode::kNormal;
-  config.vision_port = 0;
+  const ModuleConfig config = normal_mode();
   SessionOptions options;
   options.vision_sim = true;
   const std::string out = run_script("speed 1.0\nhit\nwait 3\nstatus\nquit\n", config, options);
@@ -161,9 +167,7 @@ struct Sender {
 };
 
 TEST(Session, NormalModeNeverHitsOnStaleOrBadPerception) {
-  ModuleConfig config;
-  config.mode = ModuleMode::kNormal;
-  config.vision_port = 0;
+  const ModuleConfig config = normal_mode();
   std::ostringstream out;
   Session session(config, {}, out);
   Sender sender(session.vision_port());
@@ -213,9 +217,7 @@ TEST(Session, NormalModeNeverHitsOnStaleOrBadPerception) {
 }
 
 TEST(Session, LostPerceptionDuringAHitBrakes) {
-  ModuleConfig config;
-  config.mode = ModuleMode::kNormal;
-  config.vision_port = 0;
+  const ModuleConfig config = normal_mode();
   std::ostringstream out;
   Session session(config, {}, out);
   Sender sender(session.vision_port());
