@@ -11,5 +11,6 @@ void add_ds_commands(CLI::App& app);        // ds fit | ds check | ds rollout
 void add_vision_commands(CLI::App& app);    // vision-sim
 void add_study_commands(CLI::App& app);     // study launch-error
 void add_console_command(CLI::App& app);    // console
+void add_play_commands(CLI::App& app);      // sweep | collect | evaluate
 
 }  // namespace mg::cli

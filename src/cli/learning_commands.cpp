@@ -141,8 +141,12 @@ void add_learning_commands(CLI::App& app) {
     const auto inputs = parse_names("--inputs", t->learn.inputs);
     const auto outputs = parse_names("--outputs", t->learn.outputs);
     const learning::TrainOptions opt = make_train_options(t->learn, inputs.size(), outputs.size());
-    const learning::Dataset data = learning::load_dataset(t->data, inputs, outputs);
-    const learning::Model model = learning::train(data, opt);
+    const CsvTable table = read_csv(t->data);
+    const learning::Dataset data = learning::dataset_from_table(table, inputs, outputs);
+    learning::Model model = learning::train(data, opt);
+    std::vector<std::string> used = inputs;
+    used.insert(used.end(), outputs.begin(), outputs.end());
+    model.fixed = learning::constant_columns(table, {"speed"}, used);  // angle-only data sets
     learning::save_model(model, t->model);
     if (t->learn.json) {
       fmt::print("{}\n", learning::report_to_json(model).dump());

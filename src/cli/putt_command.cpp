@@ -11,7 +11,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
-#include "control/full_system.hpp"
+#include "system/system.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
@@ -44,34 +44,16 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
                           double angle, double speed, double max_duration,
                           const std::string& model_path, const std::string& config_path,
                           bool json) {
-  control::ModuleConfig config =
-      config_path.empty() ? control::ModuleConfig{} : control::load_module_config(config_path);
-  config.field = field_name;
-  if (!model_path.empty()) config.hitting_model = model_path;
-  config.validate();
-  if (!std::isfinite(angle) || angle < config.angle_min || angle > config.angle_max)
-    throw InputError(fmt::format("putt: --angle: expected {}..{} rad (safe envelope), got {}",
-                                 config.angle_min, config.angle_max, angle));
-  if (!std::isfinite(speed) || speed < config.speed_min || speed > config.speed_max)
-    throw InputError(fmt::format("putt: --speed: expected {}..{} m/s (club speed, safe envelope), got {}",
-                                 config.speed_min, config.speed_max, speed));
+  const system::System sys(system::load_config(config_path, field_name, model_path));
+  sys.check_request(angle, speed, "putt");
   if (!std::isfinite(max_duration) || max_duration <= 0.0)
     throw InputError(fmt::format("putt: --max-duration: expected > 0 s, got {}", max_duration));
-  // --hitting-model, else the config file's, else the shipped default.
-  const std::filesystem::path model_file =
-      !model_path.empty()   ? std::filesystem::path(model_path)
-      : !config_path.empty() ? std::filesystem::path(config.hitting_model)
-                             : data_dir() / "models" / "hitting-default.json";
-  const sim::World world = control::make_world_with_arm(field::load_field(field_name));
-  const auto hole = hole_text.empty() ? world.field().hole.position : parse_vector<2>("--hole", hole_text);
-  field::check_hole_position(world.field(), hole);
-  const control::ModuleModel model =
-      control::make_module_model(world, ds::read_hitting_model(model_file), config);
-  auto data = world.make_data();
+  const auto hole = hole_text.empty() ? sys.field().hole.position : parse_vector<2>("--hole", hole_text);
+  system::SystemData data(sys);
   control::FullPuttOptions options;
   options.max_duration = max_duration;
-  const control::FullPuttResult r =
-      control::full_system_putt(world, model, data.get(), hole, angle, speed, options);
+  const control::FullPuttResult r = system::arm_putt(sys, data, hole, angle, speed, options);
+  const sim::World& world = sys.arm_world();
   if (r.hit_refused) throw InputError("putt: the module refused the hit request");
   if (!r.hit) throw NumericalError("putt: the club did not reach the ball");
   const sim::PuttOutcome& out = r.outcome;
@@ -138,11 +120,12 @@ void add_putt_command(CLI::App& app) {
     request.max_duration = o->max_duration;
     request.record_interval = o->trajectory.empty() ? 0.0 : 0.01;
     request.validate();
-    const sim::World world(field::load_field(o->field));
+    const system::System sys(system::load_config(o->config, o->field, o->hitting_model));
+    const sim::World& world = sys.ball_world();
     const auto hole = o->hole.empty() ? world.field().hole.position : parse_vector<2>("--hole", o->hole);
     field::check_hole_position(world.field(), hole);
-    auto data = world.make_data();
-    const sim::PuttOutcome out = simulate_putt(world, data.get(), hole, request);
+    system::SystemData data(sys);
+    const sim::PuttOutcome out = simulate_putt(world, data.ball.get(), hole, request);
 
     if (!o->trajectory.empty()) {
       std::vector<std::vector<double>> rows;

@@ -16,7 +16,8 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
-#include "control/launch_study.hpp"
+#include "experiments/launch_study.hpp"
+#include "system/system.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "ds/hitting_model.hpp"
@@ -29,7 +30,7 @@ constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
-nlohmann::json summary_json(const control::LaunchStudyResult& r) {
+nlohmann::json summary_json(const experiments::LaunchStudyResult& r) {
   const auto& o = r.options;
   nlohmann::json angles = nlohmann::json::array();
   for (const auto& s : r.summary) {
@@ -70,6 +71,9 @@ void add_study_commands(CLI::App& app) {
     std::string out = "out/study";
     bool json = false;
     bool plot = false;
+    std::string config;
+    std::string hitting_model;
+    int threads = 0;
   };
   auto o = std::make_shared<Options>();
   CLI::App* study = app.add_subcommand("study", "Experiments with the simulated arm (thesis ch. 6)");
@@ -87,10 +91,14 @@ void add_study_commands(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Noise seed")->capture_default_str();
   cmd->add_option("--out", o->out, "Output directory for launch_error.{csv,md,png}")->capture_default_str();
+  cmd->add_option("--config", o->config, "Module config YAML");
+  cmd->add_option("--hitting-model", o->hitting_model, "Hitting DS model file (default: the shipped one)");
+  cmd->add_option("--threads", o->threads, "Threads (0: all cores; results do not depend on it)")
+      ->check(CLI::Range(0, 256));
   cmd->add_flag("--json", o->json, "Print a JSON summary instead of the Markdown table");
   cmd->add_flag("--plot", o->plot, "Also draw DIR/launch_error.png (scripts/plot_launch_error.py)");
   cmd->callback([o] {
-    control::LaunchStudyOptions opt;
+    experiments::LaunchStudyOptions opt;
     opt.angles_deg.clear();
     for (const std::string& cell : parse_names("--angles-deg", o->angles))
       opt.angles_deg.push_back(parse_number("--angles-deg", cell));
@@ -107,9 +115,8 @@ void add_study_commands(CLI::App& app) {
     opt.seed = parse_unsigned("--seed", o->seed);
     if (o->out.empty()) throw InputError("--out: expected a directory, got ''");
 
-    control::ModuleConfig config;
-    config.field = o->field;
-    config.validate();
+    const system::System sys(system::load_config(o->config, o->field, o->hitting_model));
+    const control::ModuleConfig& config = sys.config();
     for (double a : opt.angles_deg)
       if (a * kDeg < config.angle_min || a * kDeg > config.angle_max)
         throw InputError(fmt::format("--angles-deg: expected {:.1f}..{:.1f} deg (safe envelope), got {}",
@@ -119,15 +126,12 @@ void add_study_commands(CLI::App& app) {
                                    config.speed_min, config.speed_max, o->speed));
     opt.validate();
 
-    const sim::World world = control::make_world_with_arm(field::load_field(o->field));
-    opt.hole = world.field().hole.position;
-    const control::ModuleModel model = control::make_module_model(
-        world, ds::read_hitting_model(data_dir() / "models" / "hitting-default.json"), config);
+    opt.hole = sys.field().hole.position;
 
     const int total = static_cast<int>(opt.angles_deg.size()) * opt.hits;
     int done = 0;
-    const control::LaunchStudyResult r =
-        control::run_launch_study(world, model, opt, [&](const control::LaunchHit& h) {
+    const experiments::LaunchStudyResult r =
+        experiments::run_launch_study(sys, opt, o->threads, [&](const experiments::LaunchHit& h) {
           ++done;
           if (h.hit)
             fmt::print(stderr, "[{}/{}] angle {:g} deg hit {}: launch error {:+.3f} deg, club {:.3f} m/s, launch {:.3f} m/s\n",
@@ -143,8 +147,8 @@ void add_study_commands(CLI::App& app) {
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throw IoError(fmt::format("--out: cannot create '{}': {}", dir.string(), ec.message()));
-    const std::string markdown = control::launch_study_markdown(r);
-    write_file_atomic(dir / "launch_error.csv", control::launch_study_csv(r));
+    const std::string markdown = experiments::launch_study_markdown(r);
+    write_file_atomic(dir / "launch_error.csv", experiments::launch_study_csv(r));
     write_file_atomic(dir / "launch_error.md", markdown);
     if (o->plot) {
       const std::filesystem::path script =

@@ -51,6 +51,32 @@ class MapReader {
   std::array<double, N> numbers(const std::string& key, std::array<double, N> fallback) {
     return has(key) ? to_numbers<N>(node_[key], full(key)) : fallback;
   }
+  int integer(const std::string& key) {
+    const double v = number(key);
+    if (v != std::floor(v) || std::abs(v) > 1e6) fail(full(key), fmt::format("expected a whole number, got {}", v));
+    return static_cast<int>(v);
+  }
+  template <std::size_t N>
+  std::array<int, N> integers(const std::string& key) {
+    const auto v = numbers<N>(key);
+    std::array<int, N> out{};
+    for (std::size_t i = 0; i < N; ++i) {
+      if (v[i] != std::floor(v[i]) || std::abs(v[i]) > 1e6)
+        fail(full(key), fmt::format("expected whole numbers, got {}", v[i]));
+      out[i] = static_cast<int>(v[i]);
+    }
+    return out;
+  }
+  std::vector<std::string> texts(const std::string& key) {
+    const YAML::Node n = require(key);
+    if (!n.IsSequence()) fail(full(key), "expected a list of names");
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      if (!n[i].IsScalar()) fail(fmt::format("{}[{}]", full(key), i), "expected a name");
+      out.push_back(n[i].as<std::string>());
+    }
+    return out;
+  }
   MapReader child(const std::string& key) { return MapReader(require(key), source_, full(key)); }
   bool has_child(const std::string& key) { return has(key); }
 
@@ -159,6 +185,55 @@ SurfaceTerm parse_term(MapReader r, const Field& field, const std::filesystem::p
   }
   r.finish();
   return term;
+}
+
+Situations parse_situations(MapReader r, const Field& field) {
+  Situations s;
+  s.from_file = true;
+  int shapes = 0;
+  if (r.has("line")) {
+    ++shapes;
+    MapReader l = r.child("line");
+    s.shape = RegionShape::kLine;
+    s.from = l.numbers<2>("from");
+    s.to = l.numbers<2>("to");
+    s.count = l.integer("count");
+    l.finish();
+  }
+  for (const char* kind : {"grid", "box"}) {
+    if (!r.has(kind)) continue;
+    ++shapes;
+    MapReader g = r.child(kind);
+    s.shape = std::string(kind) == "grid" ? RegionShape::kGrid : RegionShape::kBox;
+    s.x_range = g.numbers<2>("x");
+    s.y_range = g.numbers<2>("y");
+    s.counts = g.integers<2>("counts");
+    g.finish();
+  }
+  if (r.has("list")) {
+    ++shapes;
+    MapReader l = r.child("list");
+    s.shape = RegionShape::kList;
+    const YAML::Node pts = l.require("points");
+    if (!pts.IsSequence()) l.fail(l.full("points"), "expected a list of [x, y]");
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      s.points.push_back(l.to_numbers<2>(pts[i], fmt::format("{}[{}]", l.full("points"), i)));
+    l.finish();
+  }
+  if (shapes != 1) r.fail(r.full("(shape)"), fmt::format("expected exactly one of line, grid, box, list; got {}", shapes));
+  if (r.has("outputs")) {
+    const auto outputs = r.texts("outputs");
+    if (outputs == std::vector<std::string>{"angle"}) s.learn_speed = false;
+    else if (outputs == std::vector<std::string>{"angle", "speed"}) s.learn_speed = true;
+    else r.fail(r.full("outputs"), "expected [angle] or [angle, speed]");
+  }
+  s.speed = r.number("speed", 0.0);
+  if (s.learn_speed && r.has("speed")) r.fail(r.full("speed"), "only for outputs: [angle] (the fixed club speed)");
+  if (!s.learn_speed && !r.has("speed")) r.fail(r.full("speed"), "missing (required with outputs: [angle])");
+  s.strategy = r.text("strategy", s.strategy);
+  r.finish();
+  s.validate(field);
+  return s;
 }
 
 }  // namespace
@@ -273,6 +348,8 @@ Field parse_field(std::string_view yaml_text, const std::string& source,
     for (std::size_t i = 0; i < surface.size(); ++i)
       f.surface.terms.push_back(
           parse_term(MapReader(surface[i], source, fmt::format("surface[{}]", i)), f, base_dir));
+    f.situations = r.has("situations") ? parse_situations(r.child("situations"), f)
+                                       : default_situations(f);
     r.finish();
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}: malformed field: {}", source, e.what()));

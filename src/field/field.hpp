@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "field/situations.hpp"
 #include "field/surface.hpp"
 
 namespace mg::field {
@@ -47,6 +48,7 @@ struct Field {
   double sliding_friction = 0.3;                ///< ball-lane Coulomb friction while sliding [-]
   Borders borders;
   Surface surface;
+  Situations situations;  ///< where the hole may be (file section `situations`, or the default)
 
   /// Throws `InputError` naming the first bad value.
   void validate() const;

@@ -28,6 +28,23 @@ void check_names(const std::string& source, const std::vector<std::string>& name
 
 }  // namespace
 
+std::vector<std::pair<std::string, double>> constant_columns(const CsvTable& table,
+                                                             const std::vector<std::string>& candidates,
+                                                             const std::vector<std::string>& used) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& name : candidates) {
+    if (std::find(used.begin(), used.end(), name) != used.end()) continue;
+    const auto it = std::find(table.header.begin(), table.header.end(), name);
+    if (it == table.header.end() || table.rows.empty()) continue;
+    const auto c = static_cast<std::size_t>(it - table.header.begin());
+    const double v = table.rows.front()[c];
+    bool constant = true;
+    for (const auto& row : table.rows) constant = constant && row[c] == v;
+    if (constant) out.emplace_back(name, v);
+  }
+  return out;
+}
+
 Dataset dataset_from_table(const CsvTable& table, const std::vector<std::string>& input_names,
                            const std::vector<std::string>& output_names, int min_rows) {
   check_names(table.source, input_names, "input");

@@ -23,6 +23,13 @@ struct Dataset {
   int size() const { return static_cast<int>(inputs.rows()); }
 };
 
+/// Of the columns `candidates` (e.g. "speed"), those present in `table`, not among `used` (the
+/// model's inputs and outputs), and constant over every row: (name, value) pairs. An angle-only
+/// data set records its fixed club speed this way (Model::fixed).
+std::vector<std::pair<std::string, double>> constant_columns(const CsvTable& table,
+                                                             const std::vector<std::string>& candidates,
+                                                             const std::vector<std::string>& used);
+
 /// Picks the named columns of a parsed CSV table. Throws `mg::InputError` naming the source when a
 /// column is missing, a name is used twice, or there are fewer than `min_rows` rows.
 Dataset dataset_from_table(const CsvTable& table, const std::vector<std::string>& input_names,

@@ -344,6 +344,10 @@ nlohmann::json model_to_json(const Model& m) {
     j["gmms"] = nlohmann::json::array();
     for (const auto& g : m.gmms) j["gmms"].push_back(stats::gmm_to_json(g));
   }
+  if (!m.fixed.empty()) {
+    j["fixed"] = nlohmann::json::object();
+    for (const auto& [n, v] : m.fixed) j["fixed"][n] = v;
+  }
   j["fit"] = report_to_json(m);
   return j;
 }
@@ -364,6 +368,17 @@ Model model_from_json(const nlohmann::json& j, std::string_view where) {
   if (!seed.is_number_unsigned() && !(seed.is_number_integer() && seed.get<long long>() >= 0))
     throw InputError(fmt::format("{}.seed: expected a non-negative integer, got {}", where, seed.dump()));
   m.seed = seed.get<std::uint64_t>();
+  if (j.contains("fixed")) {
+    const auto& fx = j["fixed"];
+    if (!fx.is_object()) throw InputError(fmt::format("{}.fixed: expected an object of numbers", where));
+    for (auto it = fx.begin(); it != fx.end(); ++it) {
+      if (!it.value().is_number() || !std::isfinite(it.value().get<double>()))
+        throw InputError(fmt::format("{}.fixed.{}: expected a finite number, got {}", where, it.key(), it.value().dump()));
+      for (const auto& o : m.output_names)
+        if (o == it.key()) throw InputError(fmt::format("{}.fixed.{}: is also an output", where, it.key()));
+      m.fixed.emplace_back(it.key(), it.value().get<double>());
+    }
+  }
   const int ni = m.num_inputs();
   const int no = m.num_outputs();
   const std::string w(where);

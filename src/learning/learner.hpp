@@ -76,6 +76,16 @@ struct Model {
   Standardizer output_standardizer;       ///< GMM-based
   std::vector<stats::Gmm> gmms;           ///< GMR: one per output over (inputs, output); joint: one over (inputs, outputs)
   std::vector<FitReport> reports;         ///< (O)
+  /// Quantities that were constant in the training data and are not learned, by name (e.g. the
+  /// club speed "speed" [m/s] of an angle-only data set, thesis 6.2.1): who plays the model uses
+  /// them as they are. File key "fixed" (optional).
+  std::vector<std::pair<std::string, double>> fixed;
+  /// The fixed value `name`, or nullptr.
+  const double* fixed_value(std::string_view name) const {
+    for (const auto& [n, v] : fixed)
+      if (n == name) return &v;
+    return nullptr;
+  }
   int num_inputs() const { return static_cast<int>(input_names.size()); }
   int num_outputs() const { return static_cast<int>(output_names.size()); }
 };

@@ -51,7 +51,19 @@ bool OutcomeTracker::update(const mjData* d) {
   const mjtNum* q = d->qpos + ids.ball_qpos;
   const mjtNum* v = d->qvel + ids.ball_dof;
   const double r = world_->field().ball.radius;
-  const double dist = std::hypot(q[0] - hole_[0], q[1] - hole_[1]);
+  const double dx = hole_[0] - q[0], dy = hole_[1] - q[1];
+  const double dist = std::hypot(dx, dy);
+  const double planar_speed = std::hypot(v[0], v[1]);
+  if (planar_speed > 0.02) {
+    heading_x_ = v[0] / planar_speed;
+    heading_y_ = v[1] / planar_speed;
+  }
+  if (!reached_rim_ && (dist < outcome_.closest_approach || dist < hole_radius_)) {
+    reached_rim_ = dist < hole_radius_;
+    outcome_.approach_speed = planar_speed;
+    outcome_.approach_lateral = heading_x_ * dy - heading_y_ * dx;
+    outcome_.approach_along = reached_rim_ ? 0.0 : heading_x_ * dx + heading_y_ * dy;
+  }
   outcome_.closest_approach = std::min(outcome_.closest_approach, dist);
   outcome_.duration = d->time;
   outcome_.rest_position = {q[0], q[1]};

@@ -37,6 +37,15 @@ struct PuttOutcome {
   PuttEnd end = PuttEnd::kTimeOut;
   std::array<double, 2> rest_position{0, 0};  ///< ball (x, y) when the run ended [m]
   double closest_approach = 0.0;  ///< min horizontal distance ball centre - hole centre [m]
+  /// How the ball met the hole: when it first crossed the rim, its horizontal speed then [m/s] and
+  /// the signed offset of its line from the hole centre (`lateral` > 0: the centre lay to the
+  /// left of its direction of travel) [m], `along` = 0. A ball that never reached the rim: the same
+  /// at its closest approach (direction: the last one while it moved faster than 2 cm/s), with
+  /// `along` > 0 [m] when the hole was still ahead (it stopped short). What a teacher corrects the
+  /// aim and the speed by.
+  double approach_speed = 0.0;
+  double approach_lateral = 0.0;
+  double approach_along = 0.0;
   double duration = 0.0;          ///< simulated time until the outcome was decided [s]
   int steps = 0;                  ///< physics steps taken
   std::vector<BallSample> trajectory;
@@ -77,6 +86,8 @@ class OutcomeTracker {
   double still_since_ = -1.0;
   double inside_since_ = -1.0;
   double lowest_z_;
+  double heading_x_ = 1.0, heading_y_ = 0.0;  ///< last direction of travel (unit)
+  bool reached_rim_ = false;
   PuttOutcome outcome_;
 };
 

@@ -1,4 +1,6 @@
-#include "control/launch_study.hpp"
+#include "experiments/launch_study.hpp"
+
+#include "system/parallel.hpp"
 
 #include <cmath>
 #include <limits>
@@ -9,7 +11,7 @@
 #include "core/io.hpp"
 #include "core/rng.hpp"
 
-namespace mg::control {
+namespace mg::experiments {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -78,57 +80,58 @@ std::vector<LaunchAngleSummary> summarize_launch_hits(const std::vector<double>&
   return out;
 }
 
-LaunchStudyResult run_launch_study(const sim::World& world, const ModuleModel& model,
-                                   const LaunchStudyOptions& options,
+LaunchStudyResult run_launch_study(const system::System& system, const LaunchStudyOptions& options,
+                                   int threads,
                                    const std::function<void(const LaunchHit&)>& progress) {
   options.validate();
   LaunchStudyResult result;
   result.options = options;
-  result.field = world.field().name;
-  result.hits.reserve(options.angles_deg.size() * static_cast<std::size_t>(options.hits));
-  auto data = world.make_data();
+  result.field = system.field().name;
+  const int n_angles = static_cast<int>(options.angles_deg.size());
+  result.hits.resize(static_cast<std::size_t>(n_angles * options.hits));
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (std::size_t a = 0; a < options.angles_deg.size(); ++a) {
+  const auto job = [&](int index, system::SystemData& data) {
+    const auto a = static_cast<std::size_t>(index / options.hits);
+    const int i = index % options.hits;
     const std::uint64_t angle_seed = derive_seed(options.seed, a);
     const double angle = options.angles_deg[a] * kDeg;
-    for (int i = 0; i < options.hits; ++i) {
-      FullPuttOptions putt = options.putt;
-      putt.torque_noise = options.torque_noise;
-      putt.placement_noise = options.placement_noise;
-      putt.seed = derive_seed(angle_seed, static_cast<std::uint64_t>(i));
-      const FullPuttResult r =
-          full_system_putt(world, model, data.get(), options.hole, angle, options.speed, putt);
-      LaunchHit h;
-      h.angle_index = static_cast<int>(a);
-      h.hit_index = i;
-      h.commanded_angle_deg = options.angles_deg[a];
-      h.commanded_speed = options.speed;
-      h.seed = putt.seed;
-      h.hit = r.hit;
-      h.ball_start = r.ball_start;
-      h.faulted = r.faulted;
-      h.rest_time = r.rest_time;
-      if (!r.hit)
-        h.failure = r.hit_refused                                ? "refused"
-                    : r.rest_time >= putt.settle_timeout - 1e-9 ? "not at rest"
-                    : r.faulted                                  ? "fault"
-                                                                 : "no contact";
-      if (r.hit) {
-        h.club_angle = r.club.angle;
-        h.club_speed = r.club.speed;
-        h.launch_angle = r.launch.angle;
-        h.launch_speed = r.launch.speed;
-        h.launch_error_deg = (r.launch.angle - angle) / kDeg;
-        h.club_speed_error = r.club.speed - options.speed;
-        h.launch_club_ratio = r.club.speed > 0.0 ? r.launch.speed / r.club.speed : nan;
-      } else {
-        h.club_angle = h.club_speed = h.launch_angle = h.launch_speed = nan;
-        h.launch_error_deg = h.club_speed_error = h.launch_club_ratio = nan;
-      }
-      result.hits.push_back(h);
-      if (progress) progress(h);
+    control::FullPuttOptions putt = options.putt;
+    putt.torque_noise = options.torque_noise;
+    putt.placement_noise = options.placement_noise;
+    putt.seed = derive_seed(angle_seed, static_cast<std::uint64_t>(i));
+    const control::FullPuttResult r =
+        system::arm_putt(system, data, options.hole, angle, options.speed, putt);
+    LaunchHit& h = result.hits[static_cast<std::size_t>(index)];
+    h.angle_index = static_cast<int>(a);
+    h.hit_index = i;
+    h.commanded_angle_deg = options.angles_deg[a];
+    h.commanded_speed = options.speed;
+    h.seed = putt.seed;
+    h.hit = r.hit;
+    h.ball_start = r.ball_start;
+    h.faulted = r.faulted;
+    h.rest_time = r.rest_time;
+    if (!r.hit)
+      h.failure = r.hit_refused                                ? "refused"
+                  : r.rest_time >= putt.settle_timeout - 1e-9 ? "not at rest"
+                  : r.faulted                                  ? "fault"
+                                                               : "no contact";
+    if (r.hit) {
+      h.club_angle = r.club.angle;
+      h.club_speed = r.club.speed;
+      h.launch_angle = r.launch.angle;
+      h.launch_speed = r.launch.speed;
+      h.launch_error_deg = (r.launch.angle - angle) / kDeg;
+      h.club_speed_error = r.club.speed - options.speed;
+      h.launch_club_ratio = r.club.speed > 0.0 ? r.launch.speed / r.club.speed : nan;
+    } else {
+      h.club_angle = h.club_speed = h.launch_angle = h.launch_speed = nan;
+      h.launch_error_deg = h.club_speed_error = h.launch_club_ratio = nan;
     }
-  }
+  };
+  system::parallel_for(system, static_cast<int>(result.hits.size()), threads, job, [&](int index) {
+    if (progress) progress(result.hits[static_cast<std::size_t>(index)]);
+  });
   result.summary = summarize_launch_hits(options.angles_deg, options.speed, result.hits);
   return result;
 }
@@ -170,4 +173,4 @@ std::string launch_study_markdown(const LaunchStudyResult& result) {
   return out;
 }
 
-}  // namespace mg::control
+}  // namespace mg::experiments

@@ -1,5 +1,5 @@
 // The launch-error study (thesis 6.1) and the execution noise of full_system_putt.
-#include "control/launch_study.hpp"
+#include "experiments/launch_study.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -13,20 +13,17 @@
 #include "core/rng.hpp"
 #include "field/field.hpp"
 
-namespace mg::control {
+namespace mg::experiments {
+using control::full_system_putt;
+using control::FullPuttOptions;
+using control::FullPuttResult;
 namespace {
 
 struct StudyRig {
-  sim::World world;
-  ModuleModel model;
-  sim::DataPtr data;
-  StudyRig()
-      : world(make_world_with_arm(field::load_field("flat"))),
-        model(make_module_model(world,
-                                ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) +
-                                                       "/data/models/hitting-default.json"),
-                                ModuleConfig{})),
-        data(world.make_data()) {}
+  system::System system{system::load_config("", "flat")};
+  system::SystemData data{system};
+  const sim::World& world = system.arm_world();
+  const control::ModuleModel& model = system.module();
 };
 
 StudyRig& rig() {
@@ -60,7 +57,7 @@ LaunchStudyOptions small(double torque_noise, double placement_noise, std::uint6
 
 // Zero noise: the putt is exactly the noise-free full_system_putt, every hit the same bits.
 TEST(LaunchStudy, ZeroNoiseGivesZeroStdAndTheNoiseFreePutt) {
-  const auto r = run_launch_study(rig().world, rig().model, small(0.0, 0.0));
+  const auto r = run_launch_study(rig().system, small(0.0, 0.0));
   print(r);
   ASSERT_EQ(r.summary.size(), 1u);
   EXPECT_EQ(r.summary[0].n, 3);
@@ -68,7 +65,7 @@ TEST(LaunchStudy, ZeroNoiseGivesZeroStdAndTheNoiseFreePutt) {
   EXPECT_EQ(r.summary[0].std_club_speed_error, 0.0);
   EXPECT_EQ(r.summary[0].std_launch_club_ratio, 0.0);
   const FullPuttResult plain =
-      full_system_putt(rig().world, rig().model, rig().data.get(), {2.0, 0.0}, 0.0, 1.0);
+      full_system_putt(rig().world, rig().model, rig().data.arm.get(), {2.0, 0.0}, 0.0, 1.0);
   for (const LaunchHit& h : r.hits) {
     EXPECT_TRUE(same_bits(h.launch_angle, plain.launch.angle));
     EXPECT_TRUE(same_bits(h.club_speed, plain.club.speed));
@@ -79,7 +76,7 @@ TEST(LaunchStudy, ZeroNoiseGivesZeroStdAndTheNoiseFreePutt) {
   FullPuttOptions seeded;
   seeded.seed = 12345;
   const FullPuttResult s =
-      full_system_putt(rig().world, rig().model, rig().data.get(), {2.0, 0.0}, 0.0, 1.0, seeded);
+      full_system_putt(rig().world, rig().model, rig().data.arm.get(), {2.0, 0.0}, 0.0, 1.0, seeded);
   EXPECT_TRUE(same_bits(s.launch.angle, plain.launch.angle));
   EXPECT_TRUE(same_bits(s.outcome.rest_position[0], plain.outcome.rest_position[0]));
   EXPECT_EQ(s.outcome.steps, plain.outcome.steps);
@@ -87,9 +84,9 @@ TEST(LaunchStudy, ZeroNoiseGivesZeroStdAndTheNoiseFreePutt) {
 
 // With noise: spread > 0; same seed same bits; another seed other bits; 0 deg nearly unbiased.
 TEST(LaunchStudy, NoiseIsSeededAndSpreadsTheLaunch) {
-  const auto a = run_launch_study(rig().world, rig().model, small(0.01, 0.001, 7));
-  const auto b = run_launch_study(rig().world, rig().model, small(0.01, 0.001, 7));
-  const auto c = run_launch_study(rig().world, rig().model, small(0.01, 0.001, 8));
+  const auto a = run_launch_study(rig().system, small(0.01, 0.001, 7), 1);
+  const auto b = run_launch_study(rig().system, small(0.01, 0.001, 7), 2);  // 2 threads, same bits
+  const auto c = run_launch_study(rig().system, small(0.01, 0.001, 8));
   print(a);
   print(c);
   ASSERT_EQ(a.summary[0].n, 3);
@@ -112,8 +109,8 @@ TEST(LaunchStudy, NoiseIsSeededAndSpreadsTheLaunch) {
 // Each noise source on its own spreads the launch; the seed of a hit does not depend on the
 // other angles in the list.
 TEST(LaunchStudy, EachNoiseSourceAloneAndSeedsIndependentOfOrder) {
-  const auto torque = run_launch_study(rig().world, rig().model, small(0.01, 0.0));
-  const auto place = run_launch_study(rig().world, rig().model, small(0.0, 0.001));
+  const auto torque = run_launch_study(rig().system, small(0.01, 0.0));
+  const auto place = run_launch_study(rig().system, small(0.0, 0.001));
   EXPECT_GT(torque.summary[0].std_error_deg, 0.0);
   EXPECT_GT(place.summary[0].std_error_deg, 0.0);
   for (const LaunchHit& h : torque.hits) EXPECT_EQ(h.ball_start[1], 0.0);
@@ -121,11 +118,11 @@ TEST(LaunchStudy, EachNoiseSourceAloneAndSeedsIndependentOfOrder) {
   LaunchStudyOptions two = small(0.01, 0.001);
   two.angles_deg = {0.0, 5.0};
   two.hits = 1;
-  const auto r = run_launch_study(rig().world, rig().model, two);
+  const auto r = run_launch_study(rig().system, two);
   ASSERT_EQ(r.hits.size(), 2u);
   EXPECT_EQ(r.hits[0].seed, derive_seed(derive_seed(1, 0), 0));
   EXPECT_EQ(r.hits[1].seed, derive_seed(derive_seed(1, 1), 0));
-  const auto first = run_launch_study(rig().world, rig().model, small(0.01, 0.001));
+  const auto first = run_launch_study(rig().system, small(0.01, 0.001));
   EXPECT_TRUE(same_bits(r.hits[0].launch_angle, first.hits[0].launch_angle));
 }
 
@@ -133,7 +130,7 @@ TEST(LaunchStudy, CsvHasOneRowPerHitAndMarkdownOneRowPerAngle) {
   LaunchStudyOptions o = small(0.01, 0.001);
   o.angles_deg = {-10.0, 10.0};
   o.hits = 2;
-  const auto r = run_launch_study(rig().world, rig().model, o);
+  const auto r = run_launch_study(rig().system, o);
   print(r);
   ASSERT_EQ(r.summary.size(), 2u);
   for (const auto& s : r.summary) {
@@ -199,4 +196,4 @@ TEST(LaunchStudy, BadOptionsAreInputErrors) {
 }
 
 }  // namespace
-}  // namespace mg::control
+}  // namespace mg::experiments

@@ -13,8 +13,9 @@
 #include <vector>
 
 #include "control/full_system.hpp"
+#include "system/system.hpp"
 
-namespace mg::control {
+namespace mg::experiments {
 
 struct LaunchStudyOptions {
   std::vector<double> angles_deg{-10.0, 0.0, 10.0};  ///< commanded hitting angles [deg]
@@ -24,7 +25,7 @@ struct LaunchStudyOptions {
   double placement_noise = 0.001;  ///< ball placement std per axis [m]
   std::uint64_t seed = 1;
   std::array<double, 2> hole{2.0, 0.0};  ///< only the launch matters
-  FullPuttOptions putt{};  ///< timeouts etc.; its noise fields and seed are set per hit
+  control::FullPuttOptions putt{};  ///< timeouts etc.; its noise fields and seed are set per hit
   /// Validates the options; throws InputError naming the bad one.
   void validate() const;
 };
@@ -73,10 +74,11 @@ struct LaunchStudyResult {
   std::vector<LaunchAngleSummary> summary;  ///< one per angle, in the options' order
 };
 
-/// Runs the study on `world` (built by make_world_with_arm) with `model`. `progress` (optional)
-/// is called after every hit. Throws InputError for bad options.
-LaunchStudyResult run_launch_study(const sim::World& world, const ModuleModel& model,
-                                   const LaunchStudyOptions& options,
+/// Runs the study on the system's arm, on `threads` threads (0: all cores; the hits are the same
+/// bits for any count: each has its own seed). `progress` (optional) is called after every hit,
+/// in completion order. Throws InputError for bad options.
+LaunchStudyResult run_launch_study(const system::System& system, const LaunchStudyOptions& options,
+                                   int threads = 0,
                                    const std::function<void(const LaunchHit&)>& progress = {});
 
 /// The per-angle summaries from hits (exposed for tests).
@@ -92,4 +94,4 @@ std::string launch_study_csv(const LaunchStudyResult& result);
 /// Markdown: a one-line description of the run, then the table (one row per angle).
 std::string launch_study_markdown(const LaunchStudyResult& result);
 
-}  // namespace mg::control
+}  // namespace mg::experiments

@@ -1,0 +1,252 @@
+// The robot plays: sweep (sinking windows), collect (the teacher's data sets), evaluate (the
+// learned model on random test situations, thesis table 6.5). All run putts on every core.
+//
+//   sweep --field F [--hole X,Y] --angles A0:A1:N --speeds V0:V1:N [--ball-only] -o OUT.csv [--plot OUT.png]
+//   collect --field F [--strategy S] [--situations SPEC] [--seed S] [--resume] -o DATA.csv
+//   evaluate --field F --model M [--situations N] [--seed S] [--no-oracle] [--json] [-o ROWS.csv]
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_util.hpp"
+#include "cli/commands.hpp"
+#include "cli/progress.hpp"
+#include "core/error.hpp"
+#include "core/io.hpp"
+#include "experiments/collect.hpp"
+#include "experiments/evaluate.hpp"
+#include "experiments/sweep.hpp"
+#include "learning/learner.hpp"
+#include "system/parallel.hpp"
+
+namespace mg::cli {
+namespace {
+
+struct SystemArgs {
+  std::string field = "flat";
+  std::string config;
+  std::string hitting_model;
+  int threads = 0;
+};
+
+void add_system_options(CLI::App* cmd, SystemArgs& a) {
+  cmd->add_option("--field", a.field, "Shipped field name or path to a field file")->capture_default_str();
+  cmd->add_option("--config", a.config, "Module config YAML");
+  cmd->add_option("--hitting-model", a.hitting_model, "Hitting DS model file (default: the shipped one)");
+  cmd->add_option("--threads", a.threads, "Threads (0: all cores; results do not depend on it)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+}
+
+/// "A0:A1:N" -> N values from A0 to A1 inclusive.
+std::vector<double> parse_range(const std::string& what, const std::string& text) {
+  const auto a = text.find(':'), b = text.rfind(':');
+  if (a == std::string::npos || a == b)
+    throw InputError(fmt::format("{}: expected LO:HI:N, got '{}'", what, text));
+  const double lo = parse_number(what, text.substr(0, a));
+  const double hi = parse_number(what, text.substr(a + 1, b - a - 1));
+  const std::uint64_t n = parse_unsigned(what, text.substr(b + 1));
+  if (n < 1 || n > 1000) throw InputError(fmt::format("{}: expected N in 1..1000, got {}", what, n));
+  if (hi < lo) throw InputError(fmt::format("{}: expected LO <= HI, got {}:{}", what, lo, hi));
+  return experiments::linspace(lo, hi, static_cast<int>(n));
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+/// Runs scripts/plots/plot.py with `args` (already quoted); throws on failure.
+void run_plot(const std::string& args) {
+  const std::filesystem::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";
+  const std::string command = "/usr/bin/python3 " + shell_quote(script.string()) + " " + args + " 1>&2";
+  if (std::system(command.c_str()) != 0) throw Error(fmt::format("--plot: {} failed", script.string()));
+}
+
+teacher::TeacherOptions teacher_options(const field::Situations& region, const std::string& strategy) {
+  teacher::TeacherOptions t;
+  t.strategy = teacher::parse_strategy(strategy.empty() ? region.strategy : strategy);
+  t.learn_speed = region.learn_speed;
+  t.fixed_speed = region.speed;
+  return t;
+}
+
+void add_sweep(CLI::App& app) {
+  struct Args {
+    SystemArgs sys;
+    std::string hole, angles, speeds, out, plot;
+    bool ball_only = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("sweep", "Outcome of every (angle, speed) cell of a grid: the sinking window");
+  add_system_options(cmd, a->sys);
+  cmd->add_option("--hole", a->hole, "Hole centre X,Y [m] (default: the field's)");
+  cmd->add_option("--angles", a->angles, "A0:A1:N hitting angles [rad] (ball only: launch angles)")->required();
+  cmd->add_option("--speeds", a->speeds, "V0:V1:N club speeds [m/s] (ball only: launch speeds)")->required();
+  cmd->add_flag("--ball-only", a->ball_only, "Launch the ball directly (no arm)");
+  cmd->add_option("-o,--output", a->out, "CSV file to write")->required();
+  cmd->add_option("--plot", a->plot, "Also draw a heat map PNG here");
+  cmd->callback([a] {
+    experiments::SweepOptions o;
+    o.angles = parse_range("--angles", a->angles);
+    o.speeds = parse_range("--speeds", a->speeds);
+    o.ball_only = a->ball_only;
+    o.threads = a->sys.threads;
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    if (!a->ball_only)
+      for (double angle : o.angles)
+        for (double speed : o.speeds) sys.check_request(angle, speed, "sweep");
+    o.hole = a->hole.empty() ? sys.field().hole.position : parse_vector<2>("--hole", a->hole);
+    Progress bar("sweep", static_cast<int>(o.angles.size() * o.speeds.size()));
+    const auto cells = experiments::run_sweep(sys, o, [&](int done, int) { bar.update(done); });
+    bar.finish();
+    write_file_atomic(a->out, experiments::sweep_csv(cells));
+    int sunk = 0;
+    for (const auto& c : cells) sunk += c.outcome.sunk;
+    if (!a->plot.empty())
+      run_plot(fmt::format("sweep {} {} --title {}", shell_quote(a->out), shell_quote(a->plot),
+                           shell_quote(fmt::format("{} hole ({:g}, {:g}){}", sys.field().name, o.hole[0],
+                                                   o.hole[1], a->ball_only ? ", ball only" : ", arm"))));
+    fmt::print("sweep on {} ({}), hole ({}, {}): {} of {} cells sink; written to {}\n", sys.field().name,
+               a->ball_only ? "ball only" : "arm", o.hole[0], o.hole[1], sunk, cells.size(), a->out);
+  });
+}
+
+field::Situations region_of(const field::Field& f, const std::string& spec) {
+  field::Situations r = spec.empty() ? f.situations : field::parse_situations_spec(spec, f.situations);
+  r.validate(f);
+  return r;
+}
+
+void add_collect(CLI::App& app) {
+  struct Args {
+    SystemArgs sys;
+    std::string strategy, situations, out;
+    std::uint64_t seed = 1;
+    bool resume = false;
+    int max_full_putts = 40;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("collect", "The teacher collects a data set of sinking putts (thesis 5.1)");
+  add_system_options(cmd, a->sys);
+  cmd->add_option("--strategy", a->strategy, "min-speed | min-angle (default: the field's situations.strategy)");
+  cmd->add_option("--situations", a->situations,
+                  "Region instead of the field's: line:X0,Y0:X1,Y1:N | grid:X0,X1:Y0,Y1:NX,NY | box:... | list:X,Y;X,Y");
+  cmd->add_option("--seed", a->seed, "Seed (recorded; the teacher is deterministic)")->capture_default_str();
+  cmd->add_option("--max-full-putts", a->max_full_putts, "Full-system putt budget per situation")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  cmd->add_flag("--resume", a->resume, "Continue an interrupted collection in the output file");
+  cmd->add_option("-o,--output", a->out, "Data set CSV to write")->required();
+  cmd->callback([a] {
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    const field::Situations region = region_of(sys.field(), a->situations);
+    experiments::CollectOptions o;
+    o.teacher = teacher_options(region, a->strategy);
+    o.teacher.max_full_putts = a->max_full_putts;
+    o.seed = a->seed;
+    o.threads = a->sys.threads;
+    o.resume = a->resume;
+    const auto holes = region.collection_points();
+    Progress bar("collect", static_cast<int>(holes.size()));
+    int full = 0, ball = 0;
+    const auto r = experiments::collect(sys, holes, o, a->out, [&](int done, int, const teacher::Example& e) {
+      full += e.full_putts;
+      ball += e.ball_putts;
+      bar.update(done, fmt::format("({} full-system, {} ball-only putts)", full, ball));
+    });
+    bar.finish();
+    int found = 0;
+    for (const auto& e : r.examples) found += e.found;
+    fmt::print("collected {} of {} situations on {} ({}{}; {} resumed): {} full-system and {} ball-only putts; "
+               "written to {}\n",
+               found, r.examples.size(), sys.field().name, teacher::to_string(o.teacher.strategy),
+               o.teacher.learn_speed ? "" : fmt::format(", angle only at {} m/s", o.teacher.fixed_speed), r.resumed,
+               r.full_putts, r.ball_putts, a->out);
+  });
+}
+
+void add_evaluate(CLI::App& app) {
+  struct Args {
+    SystemArgs sys;
+    std::string model, situations_spec, rows, strategy;
+    int situations = 30;
+    std::uint64_t seed = 1;
+    bool json = false, no_oracle = false;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("evaluate", "The robot plays random test situations with a learned model (thesis 6.3)");
+  add_system_options(cmd, a->sys);
+  cmd->add_option("--model", a->model, "Learner model file (minigolf train)")->required();
+  cmd->add_option("--situations", a->situations, "Number of random test situations")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--region", a->situations_spec, "Region instead of the field's (as collect --situations)");
+  cmd->add_option("--seed", a->seed, "Seed of the test situations")->capture_default_str();
+  cmd->add_option("--strategy", a->strategy, "The oracle teacher's strategy (default: the field's)");
+  cmd->add_flag("--no-oracle", a->no_oracle, "Skip the oracle ceiling (the teacher on every situation)");
+  cmd->add_flag("--json", a->json, "Print one JSON object");
+  cmd->add_option("-o,--output", a->rows, "Also write one CSV row per situation here");
+  cmd->callback([a] {
+    const learning::Model model = learning::load_model(a->model);
+    experiments::check_playable_model(model, a->model);
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    const field::Situations region = region_of(sys.field(), a->situations_spec);
+    experiments::EvaluateOptions o;
+    o.situations = a->situations;
+    o.seed = a->seed;
+    o.threads = a->sys.threads;
+    o.oracle = !a->no_oracle;
+    o.teacher = teacher_options(region, a->strategy);
+    Progress bar("evaluate", a->situations);
+    const auto e = experiments::evaluate_model(sys, model, region, o, [&](int done, int) { bar.update(done); });
+    bar.finish();
+    if (!a->rows.empty()) write_file_atomic(a->rows, experiments::evaluation_csv(e, sys.field()));
+    if (a->json) {
+      nlohmann::json rows = nlohmann::json::array();
+      for (const auto& r : e.rows)
+        rows.push_back({{"hole", r.hole},
+                        {"angle", r.predicted.angle},
+                        {"speed", r.predicted.speed},
+                        {"in_envelope", r.in_envelope},
+                        {"sunk", r.sunk},
+                        {"closest_approach", r.in_envelope ? nlohmann::json(r.outcome.closest_approach) : nlohmann::json()},
+                        {"oracle_found", o.oracle ? nlohmann::json(r.oracle_found) : nlohmann::json()}});
+      const nlohmann::json j = {
+          {"field", sys.field().name},
+          {"model", a->model},
+          {"method", std::string(learning::method_name(model.method))},
+          {"situations", a->situations},
+          {"seed", a->seed},
+          {"sunk", e.sunk},
+          {"success_ratio", e.success_ratio},
+          {"ci95", e.ci95},
+          {"oracle_ceiling", o.oracle ? nlohmann::json(e.oracle_ceiling) : nlohmann::json()},
+          {"oracle_found", o.oracle ? nlohmann::json(e.oracle_found) : nlohmann::json()},
+          {"rows", rows}};
+      fmt::print("{}\n", j.dump());
+      return;
+    }
+    fmt::print("{} on {}: sunk {} of {} = {:.1f} % (95 % CI {:.1f}-{:.1f} %){}\n", learning::method_name(model.method),
+               sys.field().name, e.sunk, a->situations, 100.0 * e.success_ratio, 100.0 * e.ci95[0],
+               100.0 * e.ci95[1],
+               o.oracle ? fmt::format("; oracle ceiling {:.1f} % ({} of {})", 100.0 * e.oracle_ceiling, e.oracle_found,
+                                      a->situations)
+                        : "");
+  });
+}
+
+}  // namespace
+
+void add_play_commands(CLI::App& app) {
+  add_sweep(app);
+  add_collect(app);
+  add_evaluate(app);
+}
+
+}  // namespace mg::cli

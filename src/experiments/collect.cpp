@@ -1,0 +1,148 @@
+#include "experiments/collect.hpp"
+
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "core/csv.hpp"
+#include "core/error.hpp"
+#include "core/io.hpp"
+#include "system/parallel.hpp"
+
+namespace mg::experiments {
+namespace {
+
+const std::vector<std::string> kColumns = {"index", "hole_x", "hole_y", "xi_x", "xi_y", "angle", "speed",
+                                           "margin_angle", "margin_speed", "launch_angle", "launch_speed",
+                                           "approach_speed", "full_putts", "ball_putts"};
+
+std::string format_file(const std::string& settings, const std::map<int, teacher::Example>& done,
+                        const field::Field& field) {
+  std::vector<std::vector<double>> rows;
+  std::string unplayable;
+  for (const auto& [i, e] : done) {
+    if (e.found)
+      rows.push_back({static_cast<double>(i), e.hole[0], e.hole[1], e.hole[0] - field.tee[0],
+                      e.hole[1] - field.tee[1], e.angle, e.speed, e.margin_angle, e.margin_speed,
+                      e.launch_angle, e.launch_speed, e.approach_speed, static_cast<double>(e.full_putts),
+                      static_cast<double>(e.ball_putts)});
+    else
+      unplayable += fmt::format("# unplayable: index={} hole_x={} hole_y={} full_putts={} ball_putts={}\n", i,
+                                e.hole[0], e.hole[1], e.full_putts, e.ball_putts);
+  }
+  return "# " + settings + "\n" + format_csv(kColumns, rows) + unplayable;
+}
+
+/// Reads a file written by format_file: the examples by index. Throws InputError on a mismatch.
+std::map<int, teacher::Example> read_existing(const std::filesystem::path& path, const std::string& settings,
+                                              const std::vector<std::array<double, 2>>& holes) {
+  const std::string text = read_text_file(path);
+  std::istringstream in(text);
+  std::string first;
+  std::getline(in, first);
+  if (first != "# " + settings)
+    throw InputError(fmt::format("--resume: {}: its settings differ from this run's:\n  file: {}\n  run:  # {}",
+                                 path.string(), first, settings));
+  std::map<int, teacher::Example> done;
+  const auto check_index = [&](double v) {
+    if (v != std::floor(v) || v < 0 || v >= static_cast<double>(holes.size()))
+      throw InputError(fmt::format("--resume: {}: index {} is not a situation of this run", path.string(), v));
+    return static_cast<int>(v);
+  };
+  const CsvTable table = parse_csv(text, path.string());
+  for (const auto& name : kColumns) table.column_index(name);
+  for (const auto& row : table.rows) {
+    const auto col = [&](const char* n) { return row[table.column_index(n)]; };
+    teacher::Example e;
+    const int i = check_index(col("index"));
+    e.hole = holes[static_cast<std::size_t>(i)];
+    e.found = true;
+    e.angle = col("angle");
+    e.speed = col("speed");
+    e.margin_angle = col("margin_angle");
+    e.margin_speed = col("margin_speed");
+    e.launch_angle = col("launch_angle");
+    e.launch_speed = col("launch_speed");
+    e.approach_speed = col("approach_speed");
+    e.full_putts = static_cast<int>(col("full_putts"));
+    e.ball_putts = static_cast<int>(col("ball_putts"));
+    done[i] = e;
+  }
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("# unplayable:", 0) != 0) continue;
+    double index = -1, hx = 0, hy = 0;
+    int full = 0, ball = 0;
+    if (std::sscanf(line.c_str(), "# unplayable: index=%lf hole_x=%lf hole_y=%lf full_putts=%d ball_putts=%d",
+                    &index, &hx, &hy, &full, &ball) != 5)
+      throw InputError(fmt::format("--resume: {}: malformed line '{}'", path.string(), line));
+    teacher::Example e;
+    const int i = check_index(index);
+    e.hole = holes[static_cast<std::size_t>(i)];
+    e.full_putts = full;
+    e.ball_putts = ball;
+    done[i] = e;
+  }
+  return done;
+}
+
+}  // namespace
+
+std::string collect_settings(const system::System& system, const std::vector<std::array<double, 2>>& holes,
+                             const CollectOptions& o) {
+  const auto& t = o.teacher;
+  return fmt::format(
+      "minigolf collect: field={} strategy={} outputs={} speed={} margin_angle={} margin_speed={} "
+      "budget={},{} situations={} first=({},{}) last=({},{}) seed={} hitting_model={}",
+      system.field().name, teacher::to_string(t.strategy), t.learn_speed ? "angle,speed" : "angle",
+      t.learn_speed ? 0.0 : t.fixed_speed, t.margin_angle, t.margin_speed, t.max_full_putts,
+      t.max_ball_putts, holes.size(), holes.empty() ? 0.0 : holes.front()[0],
+      holes.empty() ? 0.0 : holes.front()[1], holes.empty() ? 0.0 : holes.back()[0],
+      holes.empty() ? 0.0 : holes.back()[1], o.seed,
+      std::filesystem::path(system.config().hitting_model).filename().string());
+}
+
+CollectResult collect(const system::System& system, const std::vector<std::array<double, 2>>& holes,
+                      const CollectOptions& options, const std::filesystem::path& out,
+                      const std::function<void(int, int, const teacher::Example&)>& progress) {
+  options.teacher.validate();
+  if (holes.empty()) throw InputError("collect: expected at least one situation, got none");
+  for (const auto& h : holes) field::check_hole_position(system.field(), h);
+  const std::string settings = collect_settings(system, holes, options);
+  std::map<int, teacher::Example> done;
+  std::error_code ec;
+  if (options.resume && std::filesystem::exists(out, ec)) done = read_existing(out, settings, holes);
+  CollectResult result;
+  result.resumed = static_cast<int>(done.size());
+  std::vector<int> todo;
+  for (int i = 0; i < static_cast<int>(holes.size()); ++i)
+    if (!done.count(i)) todo.push_back(i);
+  std::vector<teacher::Example> fresh(todo.size());
+  int finished = result.resumed;
+  const int total = static_cast<int>(holes.size());
+  write_file_atomic(out, format_file(settings, done, system.field()));
+  system::parallel_for(
+      system, static_cast<int>(todo.size()), options.threads,
+      [&](int k, system::SystemData& data) {
+        const int i = todo[static_cast<std::size_t>(k)];
+        fresh[static_cast<std::size_t>(k)] =
+            teacher::teach(system, data, holes[static_cast<std::size_t>(i)], options.teacher);
+      },
+      [&](int k) {
+        const teacher::Example& e = fresh[static_cast<std::size_t>(k)];
+        done[todo[static_cast<std::size_t>(k)]] = e;
+        write_file_atomic(out, format_file(settings, done, system.field()));
+        if (progress) progress(++finished, total, e);
+      });
+  for (const auto& [i, e] : done) {
+    result.examples.push_back(e);
+    result.full_putts += e.full_putts;
+    result.ball_putts += e.ball_putts;
+  }
+  return result;
+}
+
+}  // namespace mg::experiments

@@ -1,0 +1,71 @@
+#pragma once
+/// The robot plays (thesis 6.3, table 6.5): random test situations of the field's region, the
+/// learner's predictions hit on the full system; success ratio with its 95 % Wilson interval,
+/// and the oracle ceiling (the fraction of the same situations where the teacher finds any
+/// sinking putt).
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "field/situations.hpp"
+#include "learning/learner.hpp"
+#include "system/system.hpp"
+#include "teacher/teacher.hpp"
+
+namespace mg::experiments {
+
+/// 95 % Wilson score interval of k successes in n trials ([0, 1] for n = 0).
+std::array<double, 2> wilson_interval(int k, int n, double z = 1.959963984540054);
+
+/// Hitting parameters for hole positions from a learner model whose inputs are among xi_x, xi_y
+/// (hole - tee), hole_x, hole_y and whose outputs include `angle` and either `speed` or a fixed
+/// speed (Model::fixed). Throws InputError naming the mismatch.
+struct Prediction {
+  double angle = 0.0, speed = 0.0;          ///< [rad], [m/s]
+  double angle_std = 0.0, speed_std = 0.0;  ///< predictive std (0 for a fixed speed)
+};
+std::vector<Prediction> predict_hits(const learning::Model& model, const field::Field& field,
+                                     const std::vector<std::array<double, 2>>& holes);
+/// Throws InputError unless the model can be played on a field (see predict_hits).
+void check_playable_model(const learning::Model& model, const std::string& source);
+
+struct EvaluateOptions {
+  int situations = 30;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  bool oracle = true;                  ///< also run the teacher on every situation
+  teacher::TeacherOptions teacher;     ///< for the oracle
+};
+
+struct SituationResult {
+  std::array<double, 2> hole{0, 0};
+  Prediction predicted;
+  bool in_envelope = true;  ///< false: the module refused the request (it counts as a miss)
+  bool sunk = false;
+  sim::PuttOutcome outcome;
+  bool oracle_found = false;  ///< the teacher found a sinking putt here
+  int oracle_full_putts = 0, oracle_ball_putts = 0;
+};
+
+struct Evaluation {
+  std::vector<SituationResult> rows;
+  int sunk = 0;
+  double success_ratio = 0.0;
+  std::array<double, 2> ci95{0, 1};
+  int oracle_found = 0;
+  double oracle_ceiling = 0.0;  ///< NaN without the oracle
+};
+
+/// Plays `options.situations` situations drawn from `region` with `seed` (the same for every
+/// model, so methods are compared on the same holes). Same bits for any thread count.
+Evaluation evaluate_model(const system::System& system, const learning::Model& model,
+                          const field::Situations& region, const EvaluateOptions& options,
+                          const std::function<void(int, int)>& progress = {});
+
+/// CSV, one row per situation: hole_x,hole_y,xi_x,xi_y,angle,speed,angle_std,speed_std,
+/// in_envelope,sunk,closest_approach,rest_x,rest_y,oracle_found,oracle_full_putts,oracle_ball_putts.
+std::string evaluation_csv(const Evaluation& e, const field::Field& field);
+
+}  // namespace mg::experiments

@@ -1,0 +1,76 @@
+#pragma once
+/// The automated teacher (thesis 5.1): for a situation (a hole position), find hitting parameters
+/// (theta, v) that sink the ball on the full system, following a named strategy, with a verified
+/// neighbourhood (the simulator is deterministic, so a window's edge would be a fragile example).
+///
+/// Search, in the ball's terms (what a person watching the putt corrects by):
+///   residual r(theta, v) = (lateral miss at the closest approach [m],
+///                           e - v_t^2 [m^2/s^2]),  e = v_c^2 - 2 a_roll along,
+/// where v_c is the ball's speed at its closest approach, `along` how far short it stopped and
+/// a_roll = (5/7) rho g the rolling deceleration, so e is the squared speed the ball would have
+/// had at the hole. The target arrival speed v_t names the strategy:
+///   min-speed  the ball reaches the hole slowly (v_t = kMinSpeedArrival): the slowest speed
+///              whose neighbourhood still sinks;
+///   min-angle  the ball reaches the hole as fast as the cup holds it (v_t = kMinAngleArrival
+///              scaled by the hole's capture speed): the straightest line.
+/// 1. Proposal on the ball-only path (launch angle, launch speed): Broyden's method from a
+///    physics-free prior (aim at the hole; the launch speed that rolls the distance plus the
+///    climb, Penner's law); a coarse grid around the aim if that does not converge.
+/// 2. The proposal is mapped to the club through the launch relation measured by the putts
+///    themselves (launch angle - theta, launch speed / club speed) and solved again on the full
+///    system with the same residual. Every recorded example is a full-system putt that sank.
+/// 3. Margin: the putts at theta +- margin_angle and v +- margin_speed (angle only: theta +-)
+///    must sink too; otherwise the point moves away from the failing side (twice at most), then
+///    the margin is halved (recorded).
+/// The solution is a smooth function of the hole where the sinking window is, so neighbouring
+/// situations get neighbouring parameters (thesis 3.2). Deterministic: the same system and hole
+/// give the same example.
+#include <array>
+#include <string>
+
+#include "system/system.hpp"
+
+namespace mg::teacher {
+
+enum class Strategy { kMinSpeed, kMinAngle };
+std::string to_string(Strategy s);
+Strategy parse_strategy(const std::string& name);  ///< "min-speed" | "min-angle"; InputError
+
+constexpr double kMinSpeedArrival = 0.4;  ///< [m/s] min-speed target speed at the hole centre
+constexpr double kMinAngleArrival = 0.8;  ///< [m/s] min-angle target for a 60 mm deep, 108 mm hole
+
+struct TeacherOptions {
+  Strategy strategy = Strategy::kMinSpeed;
+  /// Angle only (thesis 6.2.1-6.2.2): the club speed is fixed at `fixed_speed` [m/s].
+  bool learn_speed = true;
+  double fixed_speed = 0.0;
+  double margin_angle = 0.004;   ///< [rad] (0.23 deg; the launch std under noise is 0.07-0.1 deg)
+  double margin_speed = 0.03;    ///< [m/s] club speed
+  int max_full_putts = 40;       ///< budget per situation
+  int max_ball_putts = 600;
+  void validate() const;         ///< InputError naming the field
+};
+
+/// One collected example (a row of the teacher's data set).
+struct Example {
+  std::array<double, 2> hole{0, 0};  ///< [m]
+  bool found = false;                ///< a sinking putt with a verified neighbourhood (or margin 0)
+  double angle = 0.0;                ///< [rad] hitting angle theta
+  double speed = 0.0;                ///< [m/s] club speed v
+  double margin_angle = 0.0;         ///< [rad] verified: theta +- this sinks (0: not verified)
+  double margin_speed = 0.0;         ///< [m/s] verified: v +- this sinks (0 for angle only)
+  double launch_angle = 0.0;         ///< [rad] measured ball launch of the example's putt
+  double launch_speed = 0.0;         ///< [m/s]
+  double approach_speed = 0.0;       ///< [m/s] ball speed at the hole (closest approach)
+  int full_putts = 0;                ///< full-system putts this example cost
+  int ball_putts = 0;                ///< ball-only putts this example cost
+};
+
+/// Finds an example for `hole` (see the file comment).
+Example teach(const system::System& system, system::SystemData& data, std::array<double, 2> hole,
+              const TeacherOptions& options);
+
+/// The target arrival speed [m/s] of `strategy` for the field's hole.
+double arrival_speed(const field::Field& field, Strategy strategy);
+
+}  // namespace mg::teacher
