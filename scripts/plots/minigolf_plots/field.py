@@ -3,6 +3,7 @@ import os
 
 import matplotlib.pyplot as plt
 import numpy as np
+from mpl_toolkits.axes_grid1 import make_axes_locatable
 
 from .common import HOLE_DIAMETER, edges, on_grid, read_csv, regular_grid, save
 
@@ -29,7 +30,8 @@ def draw_field(fig, ax, heights, trajectories=(), holes=(), tee=None,
         lo, hi = (lo + hi) / 2 - 1.0, (lo + hi) / 2 + 1.0
     mesh = ax.pcolormesh(edges(xs), edges(ys), zmm, cmap="terrain", shading="flat", vmin=lo,
                          vmax=hi)
-    fig.colorbar(mesh, ax=ax, label="height [mm]", fraction=0.03, pad=0.02)
+    cax = make_axes_locatable(ax).append_axes("right", size="2%", pad=0.1)  # as tall as the lane
+    fig.colorbar(mesh, cax=cax, label="height [mm]")
     for x, y, label in trajectories:
         ax.plot(x, y, "-", lw=1.6, label=label)
         ax.plot(x[-1:], y[-1:], "o", color=ax.lines[-1].get_color(), ms=4)
@@ -50,12 +52,16 @@ def draw_field(fig, ax, heights, trajectories=(), holes=(), tee=None,
         ax.legend(fontsize=7, loc="lower right", framealpha=0.85)
 
 
+def figure_size(xs, ys, width=10.0):
+    """[in] for one field: the lane at equal aspect, room for labels, title and colour bar."""
+    aspect = (ys[-1] - ys[0]) / max(xs[-1] - xs[0], 1e-9)
+    return width, max(2.5, min(0.85 * width * aspect + 1.3, 12.0))
+
+
 def plot_field(heights_path, png_path, trajectories=(), holes=(), tee=None, title=None):
     heights = read_heights(heights_path)
     trajs = [(*read_trajectory(p), os.path.basename(p)) for p in trajectories]
-    xs, ys, _ = heights
-    aspect = (ys[-1] - ys[0]) / max(xs[-1] - xs[0], 1e-9)
-    fig, ax = plt.subplots(figsize=(10, max(2.5, min(10 * aspect + 1.2, 12))))
+    fig, ax = plt.subplots(figsize=figure_size(*heights[:2]))
     draw_field(fig, ax, heights, trajs, holes, tee)
     ax.set_title(title or f"Field {os.path.basename(heights_path)}")
     fig.tight_layout()

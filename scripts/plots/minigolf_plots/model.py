@@ -41,6 +41,7 @@ def plot_model(pred_path, train_path, png_path, output, validation_path=None, in
     else:
         fig = _two_inputs(p, q, mean * ys, std * ys, train, valid, inputs, ys, ylabel)
     fig.axes[0].set_title(head)
+    fig.tight_layout()
     save(fig, png_path)
 
 
@@ -59,7 +60,6 @@ def _one_input(x, mean, std, train, valid, name, ys, ylabel):
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
     ax.legend()
-    fig.tight_layout()
     return fig
 
 
@@ -70,18 +70,18 @@ def _two_inputs(p, q, mean, std, train, valid, inputs, ys, ylabel):
     shape = X.shape
     M, S = on_grid(mean, iy, ix, shape), on_grid(std, iy, ix, shape)
     fig = plt.figure(figsize=(9, 7))
-    ax = fig.add_subplot(projection="3d")
-    ax.plot_surface(X, Y, M, cmap="viridis", alpha=0.85, linewidth=0, antialiased=True)
+    # computed_zorder off: the data points stay visible in front of the surfaces
+    ax = fig.add_subplot(projection="3d", computed_zorder=False)
+    ax.plot_surface(X, Y, M, cmap="viridis", alpha=0.8, linewidth=0, antialiased=True, zorder=1)
     for sign in (-2, 2):
-        ax.plot_surface(X, Y, M + sign * S, color="grey", alpha=0.18, linewidth=0)
+        ax.plot_surface(X, Y, M + sign * S, color="grey", alpha=0.2, linewidth=0, zorder=1)
     for pts, style in ((train, TRAIN), (valid, VALID)):
         if pts is not None:
-            ax.scatter(pts[0][0] * sx, pts[0][1] * sy, pts[1] * ys, s=25, depthshade=False,
-                       **style)
+            ax.scatter(pts[0][0] * sx, pts[0][1] * sy, pts[1] * ys, s=30, depthshade=False,
+                       edgecolors="k", linewidths=0.5, zorder=5, **style)
     ax.plot([], [], color="grey", alpha=0.5, lw=6, label="mean ± 2σ")
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylab)
     ax.set_zlabel(ylabel)
     ax.legend(loc="upper left")
-    fig.tight_layout()
     return fig

@@ -2,6 +2,8 @@
 when given, the thesis value as a hollow bar."""
 import os
 
+import matplotlib.lines as mlines
+import matplotlib.patches as mpatches
 import matplotlib.pyplot as plt
 import numpy as np
 
@@ -39,11 +41,11 @@ def plot_success(csv_path, png_path, title=None):
         err = [[max(ratio[k] - lo[k], 0)], [max(hi[k] - ratio[k], 0)]]
         ax.errorbar(xc, ratio[k], yerr=err, color="k", capsize=3, lw=1)
         if thesis is not None and np.isfinite(thesis[k]):
-            ax.bar(xc, thesis[k], width * 0.9, fill=False, edgecolor=c, lw=1.5, ls="--",
-                   label=once("thesis value (hollow)"))
+            ax.bar(xc, thesis[k], width * 0.9, fill=False, edgecolor="k", lw=1.5, ls="--",
+                   zorder=3)
         if np.isfinite(ceiling[k]):
             ax.plot(xc, ceiling[k], "_", color="k", ms=max(8, 60 * width), mew=2.5,
-                    label=once("oracle ceiling"))
+                    zorder=4)
         if counts is not None:
             ax.text(xc, 1.5, f"{counts[k][0]:.0f}/{counts[k][1]:.0f}", ha="center",
                     va="bottom", fontsize=7, rotation=90, color="w")
@@ -52,7 +54,13 @@ def plot_success(csv_path, png_path, title=None):
     ax.set_ylabel("success ratio [%] (whiskers: 95 % interval)")
     ax.set_xlabel("field")
     ax.grid(axis="y", alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
+    handles = ax.get_legend_handles_labels()[0]  # the methods, in file order
+    if thesis is not None and np.isfinite(thesis).any():
+        handles.append(mpatches.Patch(fill=False, edgecolor="k", ls="--", label="thesis (hollow)"))
+    if np.isfinite(ceiling).any():
+        handles.append(mlines.Line2D([], [], color="k", marker="_", ms=14, mew=2.5, ls="none",
+                                     label="oracle ceiling"))
+    ax.legend(handles=handles, fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     ax.set_title(title or f"Success per field and method ({os.path.basename(csv_path)})")
     fig.tight_layout()
     save(fig, png_path)
