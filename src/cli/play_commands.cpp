@@ -5,6 +5,8 @@
 //   collect --field F [--strategy S] [--situations SPEC] [--seed S] [--resume] -o DATA.csv
 //   evaluate --field F --model M [--situations N] [--seed S] [--no-oracle] [--json] [-o ROWS.csv]
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -19,6 +21,7 @@
 #include "core/io.hpp"
 #include "experiments/collect.hpp"
 #include "experiments/evaluate.hpp"
+#include "experiments/reproduce.hpp"
 #include "experiments/sweep.hpp"
 #include "learning/learner.hpp"
 #include "system/parallel.hpp"
@@ -130,6 +133,7 @@ void add_collect(CLI::App& app) {
     std::uint64_t seed = 1;
     bool resume = false;
     int max_full_putts = 40;
+    int random = 0;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("collect", "The teacher collects a data set of sinking putts (thesis 5.1)");
@@ -141,6 +145,8 @@ void add_collect(CLI::App& app) {
   cmd->add_option("--max-full-putts", a->max_full_putts, "Full-system putt budget per situation")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
+  cmd->add_option("--random", a->random, "Collect at N random situations of the region (seeded by --seed) instead of its points")
+      ->check(CLI::Range(0, 100000));
   cmd->add_flag("--resume", a->resume, "Continue an interrupted collection in the output file");
   cmd->add_option("-o,--output", a->out, "Data set CSV to write")->required();
   cmd->callback([a] {
@@ -152,7 +158,7 @@ void add_collect(CLI::App& app) {
     o.seed = a->seed;
     o.threads = a->sys.threads;
     o.resume = a->resume;
-    const auto holes = region.collection_points();
+    const auto holes = a->random > 0 ? region.sample(a->random, a->seed) : region.collection_points();
     Progress bar("collect", static_cast<int>(holes.size()));
     int full = 0, ball = 0;
     const auto r = experiments::collect(sys, holes, o, a->out, [&](int done, int, const teacher::Example& e) {
@@ -241,12 +247,52 @@ void add_evaluate(CLI::App& app) {
   });
 }
 
+void add_reproduce(CLI::App& app) {
+  auto o = std::make_shared<experiments::ReproduceOptions>();
+  auto out = std::make_shared<std::string>("out/reproduce");
+  auto datasets = std::make_shared<std::string>();
+  auto fields = std::make_shared<std::string>("flat,multiple-hills,regular-hill,arctan");
+  CLI::App* cmd = app.add_subcommand("reproduce", "Thesis chapter 6 end to end: data sets, training, MSE, the robot playing, figures, report.md");
+  cmd->add_flag("--quick", o->quick, "30 test situations, 3 learning-curve subsets, 100 arctan splits (under 10 min on 2 cores)");
+  cmd->add_option("-o,--output", *out, "Output folder")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Threads (0: all cores; results do not depend on it)")->check(CLI::Range(0, 256));
+  cmd->add_option("--seed", o->seed, "Seed of test situations, splits and subsets")->capture_default_str();
+  cmd->add_flag("--collect", o->collect, "Collect the data sets with the teacher instead of using the shipped ones");
+  cmd->add_option("--datasets", *datasets, "Folder with <field>.csv and <field>-validation.csv (default: data/datasets)");
+  cmd->add_option("--fields", *fields, "Fields, comma-separated")->capture_default_str();
+  cmd->add_option("--config", o->config, "Module config YAML");
+  cmd->add_flag("!--no-plots", o->plots, "Skip the matplotlib figures");
+  cmd->callback([o, out, datasets, fields] {
+    o->out = *out;
+    o->datasets = *datasets;
+    o->fields = parse_names("--fields", *fields);
+    if (const char* rev = std::getenv("MINIGOLF_REVISION")) o->revision = rev;
+    else {
+      const std::string cmd = "git -C " + shell_quote(data_dir().parent_path().string()) + " rev-parse --short HEAD 2>/dev/null";
+      if (FILE* p = popen(cmd.c_str(), "r")) {
+        char buf[64] = "";
+        if (std::fgets(buf, sizeof buf, p)) {
+          o->revision = buf;
+          while (!o->revision.empty() && (o->revision.back() == '\n' || o->revision.back() == '\r')) o->revision.pop_back();
+        }
+        pclose(p);
+      }
+    }
+    experiments::reproduce(*o, [](const std::string& line) {
+      fmt::print(stderr, "{}\n", line);
+      std::fflush(stderr);
+    });
+    fmt::print("report: {}\n", (std::filesystem::path(*out) / "report.md").string());
+  });
+}
+
 }  // namespace
 
 void add_play_commands(CLI::App& app) {
   add_sweep(app);
   add_collect(app);
   add_evaluate(app);
+  add_reproduce(app);
 }
 
 }  // namespace mg::cli

@@ -79,7 +79,9 @@ def read_csv(path, required=()):
         raise PlotError(f"{path}: no such file") from None
     except (OSError, UnicodeDecodeError, csv.Error) as e:
         raise PlotError(f"{path}: cannot read: {e}") from None
-    numbered = [(n, [c.strip() for c in row]) for n, row in enumerate(lines, 1) if any(row)]
+    # Blank lines and '#' comment lines are skipped, as the project's C++ CSV reader does.
+    numbered = [(n, [c.strip() for c in row]) for n, row in enumerate(lines, 1)
+                if any(row) and not row[0].lstrip().startswith("#")]
     if not numbered:
         raise PlotError(f"{path}: empty file (no header row)")
     (_, header), body = numbered[0], numbered[1:]

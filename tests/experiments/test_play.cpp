@@ -1,0 +1,203 @@
+// Sweeps, collection (interrupted and resumed), evaluation: determinism over threads, the file
+// format, and a small collect -> train -> evaluate chain.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "core/csv.hpp"
+#include "core/error.hpp"
+#include "core/io.hpp"
+#include "experiments/collect.hpp"
+#include "experiments/evaluate.hpp"
+#include "experiments/reproduce.hpp"
+#include "experiments/sweep.hpp"
+#include "learning/dataset.hpp"
+
+namespace mg::experiments {
+namespace {
+
+namespace fs = std::filesystem;
+
+const system::System& flat() {
+  static const system::System s(system::load_config("", "flat"));
+  return s;
+}
+
+std::string slurp(const fs::path& p) { return read_text_file(p); }
+
+fs::path temp(const std::string& name) { return fs::temp_directory_path() / ("mg_play_" + std::to_string(::getpid()) + "_" + name); }
+
+TEST(Sweep, CellsAreThePuttsAndDoNotDependOnTheThreadCount) {
+  SweepOptions o;
+  o.hole = {1.5, 0.0};
+  o.angles = linspace(-0.02, 0.02, 3);
+  o.speeds = linspace(1.6, 2.2, 3);
+  o.ball_only = true;
+  o.threads = 1;
+  const auto one = run_sweep(flat(), o);
+  o.threads = 2;
+  const auto two = run_sweep(flat(), o);
+  EXPECT_EQ(sweep_csv(one), sweep_csv(two));
+  ASSERT_EQ(one.size(), 9u);
+  system::SystemData d(flat());
+  const auto direct = system::ball_putt(flat(), d, o.hole, one[5].angle, one[5].speed);
+  EXPECT_EQ(direct.closest_approach, one[5].outcome.closest_approach);
+  EXPECT_EQ(one[5].angle, 0.0);
+  EXPECT_EQ(one[5].speed, 2.2);
+  const auto header = sweep_csv(one).substr(0, sweep_csv(one).find('\n'));
+  EXPECT_EQ(header.rfind("angle,speed,sunk,closest_approach,rest_x,rest_y", 0), 0u) << header;
+}
+
+TEST(Sweep, FullSystemCellsMatchArmPutts) {
+  SweepOptions o;
+  o.hole = {2.0, 0.0};
+  o.angles = {0.01};
+  o.speeds = {1.6};
+  const auto cells = run_sweep(flat(), o);
+  system::SystemData d(flat());
+  const auto r = system::arm_putt(flat(), d, o.hole, 0.01, 1.6);
+  EXPECT_EQ(cells[0].outcome.sunk, r.outcome.sunk);
+  EXPECT_EQ(cells[0].launch_speed, r.launch.speed);
+}
+
+std::vector<std::array<double, 2>> holes() { return {{2.0, -0.1}, {2.0, 0.1}, {2.0, 0.3}, {2.5, 0.0}}; }
+
+CollectOptions angle_only(double speed) {
+  CollectOptions o;
+  o.teacher.strategy = teacher::Strategy::kMinAngle;
+  o.teacher.learn_speed = false;
+  o.teacher.fixed_speed = speed;
+  o.teacher.max_full_putts = 10;
+  return o;
+}
+
+TEST(Collect, SameBitsWithOneAndTwoThreadsAndUnplayableSituationsAreRecorded) {
+  const auto a = temp("c1.csv"), b = temp("c2.csv");
+  CollectOptions o = angle_only(1.55);
+  o.threads = 1;
+  const auto r1 = collect(flat(), holes(), o, a);
+  o.threads = 2;
+  collect(flat(), holes(), o, b);
+  EXPECT_EQ(slurp(a), slurp(b));
+  ASSERT_EQ(r1.examples.size(), 4u);
+  EXPECT_TRUE(r1.examples[0].found && r1.examples[1].found && r1.examples[2].found);
+  EXPECT_FALSE(r1.examples[3].found);  // 2.5 m at 1.55 m/s club speed: the ball stops short
+  const std::string text = slurp(a);
+  EXPECT_NE(text.find("# unplayable: index=3"), std::string::npos) << text;
+  // The file trains as it is: comment lines are skipped, the fixed speed is a constant column.
+  const CsvTable t = read_csv(a);
+  EXPECT_EQ(t.num_rows(), 3u);
+  const auto fixed = learning::constant_columns(t, {"speed"}, {"xi_y", "angle"});
+  ASSERT_EQ(fixed.size(), 1u);
+  EXPECT_EQ(fixed[0].second, 1.55);
+  fs::remove(a);
+  fs::remove(b);
+}
+
+TEST(Collect, AnInterruptedCollectionResumesWithoutLosingOrDuplicatingAnExample) {
+  const auto full = temp("full.csv"), part = temp("part.csv");
+  CollectOptions o = angle_only(1.55);
+  collect(flat(), holes(), o, full);
+  // Interrupted after two situations: the file as it was then (settings, header, two rows).
+  std::istringstream in(slurp(full));
+  std::string line, cut;
+  for (int k = 0; k < 4 && std::getline(in, line); ++k) cut += line + "\n";
+  write_file_atomic(part, cut);
+  o.resume = true;
+  const auto r = collect(flat(), holes(), o, part);
+  EXPECT_EQ(r.resumed, 2);
+  EXPECT_EQ(slurp(part), slurp(full));
+  // Resuming a finished file changes nothing; other settings are refused.
+  const auto again = collect(flat(), holes(), o, part);
+  EXPECT_EQ(again.resumed, 4);
+  EXPECT_EQ(slurp(part), slurp(full));
+  CollectOptions other = angle_only(1.6);
+  other.resume = true;
+  EXPECT_THROW(collect(flat(), holes(), other, part), InputError);
+  EXPECT_EQ(slurp(part), slurp(full));  // refused without touching the file
+  fs::remove(full);
+  fs::remove(part);
+}
+
+TEST(Evaluate, WilsonIntervalMatchesTheClosedForm) {
+  const auto a = wilson_interval(30, 30);
+  EXPECT_NEAR(a[0], 0.8865, 1e-4);  // 30/30: [0.8865, 1]
+  EXPECT_DOUBLE_EQ(a[1], 1.0);
+  const auto b = wilson_interval(26, 30);
+  EXPECT_NEAR(b[0], 0.7028, 1e-3);
+  EXPECT_NEAR(b[1], 0.9469, 1e-3);
+  const auto c = wilson_interval(0, 10);
+  EXPECT_DOUBLE_EQ(c[0], 0.0);
+  EXPECT_NEAR(c[1], 0.2775, 1e-3);
+}
+
+TEST(Evaluate, CollectTrainEvaluateOnASmallCase) {
+  const auto data = temp("train.csv");
+  const field::Situations line = field::parse_situations_spec("line:2.0,-0.1:2.0,0.3:5", flat().field().situations);
+  CollectOptions o = angle_only(1.55);
+  collect(flat(), line.collection_points(), o, data);
+  const CsvTable t = read_csv(data);
+  ASSERT_EQ(t.num_rows(), 5u);
+  learning::TrainOptions to;
+  learning::Model model = learning::train(learning::dataset_from_table(t, {"xi_y"}, {"angle"}), to);
+  model.fixed = learning::constant_columns(t, {"speed"}, {"xi_y", "angle"});
+  EvaluateOptions eo;
+  eo.situations = 6;
+  eo.seed = 3;
+  eo.threads = 1;
+  eo.teacher = o.teacher;
+  const Evaluation e1 = evaluate_model(flat(), model, line, eo);
+  eo.threads = 2;
+  const Evaluation e2 = evaluate_model(flat(), model, line, eo);
+  EXPECT_EQ(evaluation_csv(e1, flat().field()), evaluation_csv(e2, flat().field()));
+  EXPECT_GE(e1.sunk, 5) << evaluation_csv(e1, flat().field());  // flat: interpolation between 5 examples
+  EXPECT_EQ(e1.oracle_found, 6);
+  EXPECT_DOUBLE_EQ(e1.oracle_ceiling, 1.0);
+  EXPECT_LE(e1.ci95[0], e1.success_ratio);
+  for (const auto& r : e1.rows) EXPECT_EQ(r.predicted.speed, 1.55);
+  fs::remove(data);
+}
+
+TEST(Evaluate, ModelsThatCannotPlayAreRefused) {
+  learning::Model m;
+  m.input_names = {"distance"};
+  m.output_names = {"angle"};
+  EXPECT_THROW(check_playable_model(m, "m.json"), InputError);
+  m.input_names = {"xi_y"};
+  EXPECT_THROW(check_playable_model(m, "m.json"), InputError);  // no speed, no fixed speed
+  m.fixed = {{"speed", 1.5}};
+  EXPECT_NO_THROW(check_playable_model(m, "m.json"));
+  m.output_names = {"speed"};
+  EXPECT_THROW(check_playable_model(m, "m.json"), InputError);  // no angle
+}
+
+TEST(Reproduce, ArctanSplitKeepsTheCornersInTraining) {
+  for (std::uint64_t seed = 0; seed < 50; ++seed) {
+    const auto v = arctan_validation_split(7, 4, 9, seed);
+    ASSERT_EQ(v.size(), 9u);
+    for (int i : v) EXPECT_TRUE(i != 0 && i != 3 && i != 24 && i != 27) << i;
+    for (std::size_t k = 1; k < v.size(); ++k) EXPECT_LT(v[k - 1], v[k]);
+  }
+  EXPECT_NE(arctan_validation_split(7, 4, 9, 1), arctan_validation_split(7, 4, 9, 2));
+}
+
+TEST(Reproduce, FailsClearlyOnAMissingDataSet) {
+  ReproduceOptions o;
+  o.out = temp("repro");
+  o.datasets = temp("no-such-folder");
+  o.fields = {"flat"};
+  o.plots = false;
+  try {
+    reproduce(o, [](const std::string&) {});
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("flat.csv"), std::string::npos) << e.what();
+  }
+  fs::remove_all(o.out);
+}
+
+}  // namespace
+}  // namespace mg::experiments

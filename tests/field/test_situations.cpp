@@ -1,0 +1,128 @@
+// The `situations` section of field files: shapes, defaults, sampling, command-line specs, errors.
+#include "field/situations.hpp"
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "field/field.hpp"
+
+namespace mg::field {
+namespace {
+
+std::string with_situations(const std::string& section) {
+  return std::string(R"(
+format_version: 1
+name: test
+lane: {bounds: [-0.3, 2.7, -0.6, 0.6]}
+tee: [0.0, 0.0]
+hole: {position: [2.0, 0.0]}
+rolling_resistance: 0.131
+surface:
+  - {type: plane}
+)") + section;
+}
+
+Field parse(const std::string& text) { return parse_field(text, "test.yaml", "."); }
+
+void expect_error(const std::string& section, const std::string& needle) {
+  try {
+    parse(with_situations(section));
+    ADD_FAILURE() << "expected an error mentioning '" << needle << "'";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("test.yaml"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Situations, LineGivesEquallySpacedHolesEndsIncluded) {
+  const Field f = parse(with_situations(
+      "situations: {line: {from: [2.0, -0.2], to: [2.0, 0.4], count: 11}, outputs: [angle], speed: 1.5}\n"));
+  const Situations& s = f.situations;
+  EXPECT_TRUE(s.from_file);
+  EXPECT_FALSE(s.learn_speed);
+  EXPECT_DOUBLE_EQ(s.speed, 1.5);
+  const auto p = s.collection_points();
+  ASSERT_EQ(p.size(), 11u);
+  EXPECT_DOUBLE_EQ(p.front()[1], -0.2);
+  EXPECT_DOUBLE_EQ(p.back()[1], 0.4);
+  for (std::size_t i = 1; i < p.size(); ++i) EXPECT_NEAR(p[i][1] - p[i - 1][1], 0.06, 1e-12);
+}
+
+TEST(Situations, GridIsXMajorAndSamplesStayInTheRectangle) {
+  const Field f = parse(with_situations("situations: {grid: {x: [1.8, 2.4], y: [0.0, 0.3], counts: [7, 4]}}\n"));
+  const auto p = f.situations.collection_points();
+  ASSERT_EQ(p.size(), 28u);
+  EXPECT_DOUBLE_EQ(p[1][0], 1.8);
+  EXPECT_DOUBLE_EQ(p[1][1], 0.1);
+  EXPECT_DOUBLE_EQ(p[4][0], 1.9);
+  const auto a = f.situations.sample(200, 5), b = f.situations.sample(200, 5), c = f.situations.sample(30, 5);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i], b[i]);  // seeded
+    EXPECT_GE(a[i][0], 1.8);
+    EXPECT_LE(a[i][0], 2.4);
+    EXPECT_GE(a[i][1], 0.0);
+    EXPECT_LE(a[i][1], 0.3);
+  }
+  for (std::size_t i = 0; i < c.size(); ++i) EXPECT_EQ(a[i], c[i]);  // the first 30 of 200
+}
+
+TEST(Situations, ListAndDefault) {
+  const Field f = parse(with_situations("situations: {list: {points: [[1.5, 0.1], [2.0, -0.1]]}, strategy: min-angle}\n"));
+  EXPECT_EQ(f.situations.collection_points().size(), 2u);
+  EXPECT_EQ(f.situations.strategy, "min-angle");
+  const auto s = f.situations.sample(10, 1);
+  for (const auto& h : s) EXPECT_TRUE(h == (std::array<double, 2>{1.5, 0.1}) || h == (std::array<double, 2>{2.0, -0.1}));
+  const Field d = parse(with_situations(""));
+  EXPECT_FALSE(d.situations.from_file);
+  EXPECT_EQ(d.situations.collection_points().size(), 9u);
+  EXPECT_TRUE(d.situations.learn_speed);
+}
+
+TEST(Situations, FileErrorsNameTheKey) {
+  expect_error("situations: {outputs: [angle, speed]}\n", "exactly one of line, grid, box, list");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, grid: {x: [1, 2], y: [0, 1], counts: [2, 2]}}\n",
+               "exactly one");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 0}}\n", "count");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 2.5}}\n", "whole number");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.9], count: 3}}\n", "outside the lane");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, outputs: [angle]}\n", "speed");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, speed: 1.5}\n", "only for outputs: [angle]");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, strategy: fastest}\n", "min-speed or min-angle");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, colour: red}\n", "unknown key");
+  expect_error("situations: {grid: {x: [2.4, 1.8], y: [0, 0.3], counts: [2, 2]}}\n", "[low, high]");
+  expect_error("situations: {list: {points: [[0.0, 0.0]]}}\n", "on the tee");
+  expect_error("situations: {list: {points: [[1.0, nan]]}}\n", "finite");
+}
+
+TEST(Situations, CommandLineSpecs) {
+  const Field f = parse(with_situations(""));
+  const Situations line = parse_situations_spec("line:1.5,0:2.0,0.2:6", f.situations);
+  EXPECT_EQ(line.shape, RegionShape::kLine);
+  EXPECT_EQ(line.collection_points().size(), 6u);
+  const Situations grid = parse_situations_spec("grid:1.8,2.0:0,0.2:3,2", f.situations);
+  EXPECT_EQ(grid.collection_points().size(), 6u);
+  const Situations list = parse_situations_spec("list:1.5,0.1;2.0,0", f.situations);
+  EXPECT_EQ(list.collection_points().size(), 2u);
+  for (const char* bad : {"", "circle:1,2", "line:1,2:3", "line:1,a:2,0:3", "grid:1,2:0,1:0,2", "list:1,2;3", "line:1,0:2,0:1e9"})
+    EXPECT_THROW(parse_situations_spec(bad, f.situations), InputError) << bad;
+  Situations off = parse_situations_spec("line:2,0:2,3:3", f.situations);
+  EXPECT_THROW(off.validate(f), InputError);
+}
+
+TEST(Situations, EveryShippedFieldHasItsThesisRegion) {
+  for (const std::string name : {"flat", "multiple-hills", "regular-hill", "arctan"}) {
+    const Field f = load_field(name);
+    EXPECT_TRUE(f.situations.from_file) << name;
+  }
+  EXPECT_EQ(load_field("flat").situations.collection_points().size(), 11u);
+  EXPECT_FALSE(load_field("multiple-hills").situations.learn_speed);
+  EXPECT_EQ(load_field("regular-hill").situations.shape, RegionShape::kGrid);
+  EXPECT_EQ(load_field("arctan").situations.collection_points().size(), 28u);
+  EXPECT_EQ(load_field("arctan").situations.strategy, "min-speed");
+}
+
+}  // namespace
+}  // namespace mg::field

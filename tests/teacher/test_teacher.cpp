@@ -1,0 +1,78 @@
+// The automated teacher: finds sinking putts on the full system with a verified neighbourhood.
+#include "teacher/teacher.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+
+namespace mg::teacher {
+namespace {
+
+const system::System& flat() {
+  static const system::System s(system::load_config("", "flat"));
+  return s;
+}
+
+TEST(Teacher, FindsASinkingPuttOnTheFlatFieldInAHandfulOfPutts) {
+  system::SystemData data(flat());
+  TeacherOptions o;
+  o.strategy = Strategy::kMinAngle;
+  o.learn_speed = false;
+  o.fixed_speed = 1.55;
+  const Example e = teach(flat(), data, {2.0, 0.1}, o);
+  ASSERT_TRUE(e.found);
+  EXPECT_LE(e.full_putts, 8);  // solve (2-4) + the two neighbours
+  EXPECT_EQ(e.speed, 1.55);
+  EXPECT_GT(e.margin_angle, 0.0);
+  // The recorded example really sinks, and so do its neighbours (it is not a window's edge).
+  for (double da : {-e.margin_angle, 0.0, e.margin_angle})
+    EXPECT_TRUE(system::arm_putt(flat(), data, e.hole, e.angle + da, e.speed).outcome.sunk) << da;
+  // Aimed about along xi (plus the arm's launch bias).
+  EXPECT_NEAR(e.angle, std::atan2(0.1, 2.0), 0.02);
+}
+
+TEST(Teacher, StrategiesDifferAsNamedAndAreDeterministic) {
+  system::SystemData data(flat());
+  TeacherOptions slow, straight;
+  slow.strategy = Strategy::kMinSpeed;
+  straight.strategy = Strategy::kMinAngle;
+  const Example a = teach(flat(), data, {1.6, 0.2}, slow);
+  const Example b = teach(flat(), data, {1.6, 0.2}, straight);
+  ASSERT_TRUE(a.found);
+  ASSERT_TRUE(b.found);
+  EXPECT_LT(a.speed, b.speed);                  // min-speed arrives slower
+  EXPECT_LT(a.approach_speed, b.approach_speed);
+  EXPECT_GT(a.ball_putts, 0);                   // proposed on the ball-only path first
+  EXPECT_TRUE(system::arm_putt(flat(), data, a.hole, a.angle, a.speed).outcome.sunk);
+  EXPECT_TRUE(system::arm_putt(flat(), data, a.hole, a.angle, a.speed + a.margin_speed).outcome.sunk);
+  EXPECT_TRUE(system::arm_putt(flat(), data, a.hole, a.angle, a.speed - a.margin_speed).outcome.sunk);
+  const Example again = teach(flat(), data, {1.6, 0.2}, slow);
+  EXPECT_EQ(again.angle, a.angle);
+  EXPECT_EQ(again.speed, a.speed);
+  EXPECT_EQ(again.full_putts, a.full_putts);
+}
+
+TEST(Teacher, AnUnreachableHoleIsReportedNotFound) {
+  system::SystemData data(flat());
+  TeacherOptions o;
+  o.learn_speed = false;
+  o.fixed_speed = 0.4;  // far too slow for a hole 2.5 m away
+  o.max_full_putts = 8;
+  const Example e = teach(flat(), data, {2.5, 0.0}, o);
+  EXPECT_FALSE(e.found);
+  EXPECT_LE(e.full_putts, 8 + 10);
+}
+
+TEST(Teacher, BadOptionsAndNamesAreRefused) {
+  EXPECT_THROW(parse_strategy("fastest"), InputError);
+  EXPECT_EQ(parse_strategy("min-angle"), Strategy::kMinAngle);
+  system::SystemData data(flat());
+  TeacherOptions o;
+  o.learn_speed = false;
+  o.fixed_speed = 0.0;
+  EXPECT_THROW(teach(flat(), data, {2.0, 0.0}, o), InputError);
+  EXPECT_THROW(teach(flat(), data, {9.0, 0.0}, TeacherOptions{}), InputError);  // off the lane
+}
+
+}  // namespace
+}  // namespace mg::teacher
