@@ -14,7 +14,7 @@
 
 #include "cli/commands.hpp"
 #include "control/module_config.hpp"
-#include "control/session.hpp"
+#include "system/session.hpp"
 #include "core/error.hpp"
 
 namespace mg::cli {
@@ -54,12 +54,12 @@ void add_console_command(CLI::App& app) {
       script.open(o->script);
       if (!script) throw IoError("console: cannot read script '" + o->script + "'");
     }
-    control::SessionOptions options;
+    system::SessionOptions options;
     options.realtime = o->realtime;
     options.vision_sim = o->vision_sim;
     options.echo = o->echo;
     options.seed = o->seed;
-    control::Session session(config, options, std::cout);
+    system::Session session(config, options, std::cout);
     const bool interactive = o->script.empty() && isatty(STDIN_FILENO) != 0;
     session.run(o->script.empty() ? std::cin : script, interactive);
   });

@@ -122,7 +122,7 @@ void add_sweep(CLI::App& app) {
 
 field::Situations region_of(const field::Field& f, const std::string& spec) {
   field::Situations r = spec.empty() ? f.situations : field::parse_situations_spec(spec, f.situations);
-  r.validate(f);
+  r.validate(f, spec.empty() ? "" : fmt::format("--situations '{}'", spec));
   return r;
 }
 

@@ -51,20 +51,23 @@ struct Thesis {
   }
   /// MSE of (field, output, method) as printed, or NaN.
   double mse(const std::string& field, const std::string& output, const std::string& method) const {
-    const YAML::Node f = root["mse"][key(field)];
-    if (!f) return NAN;
-    YAML::Node o = f[output];
-    if (!o) o = f["simulator_" + output];
     std::string m = method;
     std::replace(m.begin(), m.end(), '-', '_');
-    return o && o[m] ? o[m].as<double>() : NAN;
+    const YAML::Node mse = root["mse"];
+    if (!mse || !mse.IsMap() || !mse[key(field)]) return NAN;
+    const YAML::Node f = mse[key(field)];
+    // (yaml-cpp: assigning to a Node writes through, so pick the node without reassigning)
+    const YAML::Node o = f[output] ? f[output] : f["simulator_" + output];
+    return o && o.IsMap() && o[m] ? o[m].as<double>() : NAN;
   }
   /// Success ratio of (field, method) in the simulator, or NaN.
   double success(const std::string& field, const std::string& method) const {
-    const YAML::Node f = root["success"][key(field)];
     std::string m = method;
     std::replace(m.begin(), m.end(), '-', '_');
-    if (!f || !f["simulator"] || !f["simulator"][m]) return NAN;
+    const YAML::Node s = root["success"];
+    if (!s || !s.IsMap() || !s[key(field)]) return NAN;
+    const YAML::Node f = s[key(field)];
+    if (!f["simulator"] || !f["simulator"][m]) return NAN;
     const YAML::Node c = f["simulator"][m];
     return c[1].as<double>() / c[0].as<double>();
   }
@@ -138,6 +141,18 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
   const Thesis thesis = load_thesis();
   const fs::path datasets = opt.datasets.empty() ? data_dir() / "datasets" : opt.datasets;
   std::error_code ec;
+  if (opt.fields.empty()) throw InputError("reproduce: --fields: expected at least one field");
+  for (const auto& name : opt.fields) {  // every input checked before any work starts
+    const field::Field fl = field::load_field(name);
+    const bool split = static_cast<int>(fl.situations.collection_points().size()) >= kSplitMinPoints;
+    if (opt.collect) continue;
+    for (const fs::path p : {datasets / (name + ".csv"), datasets / (name + "-validation.csv")}) {
+      if (split && p.filename().string().ends_with("-validation.csv")) continue;
+      if (!fs::is_regular_file(p, ec))
+        throw InputError(fmt::format("reproduce: data set {} is missing (run with --collect, or "
+                                     "scripts/make-datasets.sh)", p.string()));
+    }
+  }
   fs::create_directories(opt.out / "csv", ec);
   fs::create_directories(opt.out / "figures", ec);
   if (ec) throw IoError(fmt::format("-o: cannot create '{}': {}", opt.out.string(), ec.message()));

@@ -116,8 +116,8 @@ std::vector<std::array<double, 2>> Situations::sample(int n, std::uint64_t seed)
   return out;
 }
 
-void Situations::validate(const Field& field) const {
-  const std::string where = fmt::format("{}: situations", field.source);
+void Situations::validate(const Field& field, const std::string& where_arg) const {
+  const std::string where = where_arg.empty() ? fmt::format("{}: situations", field.source) : where_arg;
   const auto bad = [&](const std::string& why) { throw InputError(fmt::format("{}: {}", where, why)); };
   switch (shape) {
     case RegionShape::kLine:

@@ -44,9 +44,9 @@ struct Situations {
   std::array<double, 2> sample(Rng& rng) const;
   /// `n` test situations from `seed` (sample i uses its own stream: independent of n's split).
   std::vector<std::array<double, 2>> sample(int n, std::uint64_t seed) const;
-  /// Throws InputError (naming `source`) if a hole of the region leaves the field's lane, or a
-  /// count or range is unusable.
-  void validate(const Field& field) const;
+  /// Throws InputError (naming `where`, default: the field file's situations) if a hole of the
+  /// region leaves the field's lane, or a count or range is unusable.
+  void validate(const Field& field, const std::string& where = "") const;
 };
 
 /// The default region of a field without a `situations` section.

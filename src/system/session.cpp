@@ -1,4 +1,4 @@
-#include "control/session.hpp"
+#include "system/session.hpp"
 
 #include <pthread.h>
 #include <sched.h>
@@ -17,21 +17,15 @@
 #include "field/field.hpp"
 #include "robot/wam_model.hpp"
 
-namespace mg::control {
+namespace mg::system {
+
+using namespace mg::control;  // the module's types, used throughout the scheduler
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// A relative path that does not exist from the working directory is tried from the repository
-/// root (the parent of the data folder), so the shipped defaults work from anywhere.
-std::filesystem::path resolve_path(const std::string& text) {
-  const std::filesystem::path p(text);
-  std::error_code ec;
-  if (p.is_absolute() || std::filesystem::exists(p, ec)) return p;
-  const std::filesystem::path from_root = data_dir().parent_path() / p;
-  return std::filesystem::exists(from_root, ec) ? from_root : p;
-}
+std::filesystem::path resolve_path(const std::string& text) { return resolve_data_path(text); }
 
 /// Tries SCHED_FIFO at `priority`; says what the thread got.
 std::string set_thread_priority(int priority) {
@@ -94,13 +88,13 @@ Session::Session(const ModuleConfig& config, const SessionOptions& options, std:
     : config_(config),
       options_(options),
       out_(out),
-      world_(make_world_with_arm(field::load_field(config.field))),
+      system_(std::make_unique<System>(config)),
+      world_(system_->arm_world()),
       d_(world_.make_data()),
       truth_(world_, d_.get()),
       events_(new Event[kEventCapacity]) {
-  config_.validate();
-  model_ = std::make_unique<ModuleModel>(make_module_model(
-      world_, ds::read_hitting_model(resolve_path(config_.hitting_model)), config_));
+  config_ = system_->config();
+  model_ = std::make_unique<ModuleModel>(system_->module());
   md_ = std::make_unique<ModuleData>(*model_);
   world_.reset(d_.get());
   robot::Vector7 rest;
@@ -679,4 +673,4 @@ std::array<double, 2> Session::ball_position() const {
   return {b[0], b[1]};
 }
 
-}  // namespace mg::control
+}  // namespace mg::system

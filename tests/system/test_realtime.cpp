@@ -4,9 +4,10 @@
 
 #include <sstream>
 
-#include "control/session.hpp"
+#include "system/session.hpp"
 
-namespace mg::control {
+namespace mg::system {
+using namespace mg::control;
 namespace {
 
 TEST(Realtime, HoldsFiveHundredHertzWithUnderOnePercentMisses) {
@@ -55,4 +56,4 @@ TEST(Realtime, NormalModeEndToEndOverLoopback) {
 }
 
 }  // namespace
-}  // namespace mg::control
+}  // namespace mg::system

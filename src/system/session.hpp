@@ -36,8 +36,13 @@
 #include "perception/vision_publisher.hpp"
 #include "sim/putt.hpp"
 #include "sim/world.hpp"
+#include "system/system.hpp"
 
-namespace mg::control {
+namespace mg::system {
+
+using control::CoreTiming;
+using control::ModuleConfig;
+using control::ModuleState;
 
 struct SessionOptions {
   bool realtime = false;    ///< three threads paced by the wall clock; else lockstep
@@ -101,17 +106,18 @@ class Session {
   void robot_loop();
   void stop_threads();
   void say(std::string_view text);
-  void do_command(const ConsoleCommand& command);
+  void do_command(const control::ConsoleCommand& command);
   void load_params(const std::string& path);
   std::string scheduling_locked() const;
 
   ModuleConfig config_;
   SessionOptions options_;
   std::ostream& out_;
-  sim::World world_;
+  std::unique_ptr<System> system_;  ///< field worlds, arm, hitting model: built once
+  const sim::World& world_;
   sim::DataPtr d_;
-  std::unique_ptr<ModuleModel> model_;
-  std::unique_ptr<ModuleData> md_;
+  std::unique_ptr<control::ModuleModel> model_;  ///< a copy of the system's (`load hitting` replaces it)
+  std::unique_ptr<control::ModuleData> md_;
   perception::SimulatorPerception truth_;
   std::unique_ptr<perception::VisionFeed> feed_;
   std::unique_ptr<perception::NetworkPerception> network_;
@@ -119,7 +125,7 @@ class Session {
   perception::Perception* perception_ = nullptr;
   std::optional<learning::Model> params_;
   std::string params_path_;
-  Recorder recorder_;
+  control::Recorder recorder_;
   double angle_ = 0.0;  ///< [rad] the console's current hitting angle
   double speed_ = 1.0;  ///< [m/s] the console's current club speed
   bool hit_when_at_rest_ = false;
@@ -145,4 +151,4 @@ class Session {
   std::string robot_priority_;  ///< realtime: what the robot thread got (guarded by mutex_)
 };
 
-}  // namespace mg::control
+}  // namespace mg::system

@@ -9,14 +9,15 @@
 #include <string>
 #include <vector>
 
-#include "control/session.hpp"
+#include "system/session.hpp"
 #include "core/csv.hpp"
 #include "learning/dataset.hpp"
 #include "learning/learner.hpp"
 #include "perception/udp.hpp"
 #include "perception/vision_message.hpp"
 
-namespace mg::control {
+namespace mg::system {
+using namespace mg::control;
 namespace {
 
 std::string run_script(const std::string& script, const ModuleConfig& config = {},
@@ -261,4 +262,4 @@ TEST(Session, AutoTakesAngleAndSpeedFromTheParameterModel) {
 }
 
 }  // namespace
-}  // namespace mg::control
+}  // namespace mg::system
