@@ -169,11 +169,11 @@ void add_collect(CLI::App& app) {
     bar.finish();
     int found = 0;
     for (const auto& e : r.examples) found += e.found;
-    fmt::print("collected {} of {} situations on {} ({}{}; {} resumed): {} full-system and {} ball-only putts; "
-               "written to {}\n",
+    fmt::print("collected {} of {} situations on {} ({}{}; {} resumed, {} replaced by the continuity pass): {} "
+               "full-system and {} ball-only putts; written to {}\n",
                found, r.examples.size(), sys.field().name, teacher::to_string(o.teacher.strategy),
                o.teacher.learn_speed ? "" : fmt::format(", angle only at {} m/s", o.teacher.fixed_speed), r.resumed,
-               r.full_putts, r.ball_putts, a->out);
+               r.repaired, r.full_putts, r.ball_putts, a->out);
   });
 }
 

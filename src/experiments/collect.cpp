@@ -1,5 +1,6 @@
 #include "experiments/collect.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -19,8 +20,9 @@ const std::vector<std::string> kColumns = {"index", "hole_x", "hole_y", "xi_x", 
                                            "margin_angle", "margin_speed", "launch_angle", "launch_speed",
                                            "approach_speed", "full_putts", "ball_putts"};
 
+/// `repaired` < 0: the continuity pass has not run yet.
 std::string format_file(const std::string& settings, const std::map<int, teacher::Example>& done,
-                        const field::Field& field) {
+                        const field::Field& field, int repaired = -1) {
   std::vector<std::vector<double>> rows;
   std::string unplayable;
   for (const auto& [i, e] : done) {
@@ -33,12 +35,13 @@ std::string format_file(const std::string& settings, const std::map<int, teacher
       unplayable += fmt::format("# unplayable: index={} hole_x={} hole_y={} full_putts={} ball_putts={}\n", i,
                                 e.hole[0], e.hole[1], e.full_putts, e.ball_putts);
   }
-  return "# " + settings + "\n" + format_csv(kColumns, rows) + unplayable;
+  const std::string pass = repaired >= 0 ? fmt::format("# continuity pass: repaired={}\n", repaired) : "";
+  return "# " + settings + "\n" + format_csv(kColumns, rows) + unplayable + pass;
 }
 
 /// Reads a file written by format_file: the examples by index. Throws InputError on a mismatch.
 std::map<int, teacher::Example> read_existing(const std::filesystem::path& path, const std::string& settings,
-                                              const std::vector<std::array<double, 2>>& holes) {
+                                              const std::vector<std::array<double, 2>>& holes, int& repaired) {
   const std::string text = read_text_file(path);
   std::istringstream in(text);
   std::string first;
@@ -73,6 +76,7 @@ std::map<int, teacher::Example> read_existing(const std::filesystem::path& path,
   }
   std::string line;
   while (std::getline(in, line)) {
+    if (std::sscanf(line.c_str(), "# continuity pass: repaired=%d", &repaired) == 1) continue;
     if (line.rfind("# unplayable:", 0) != 0) continue;
     double index = -1, hx = 0, hy = 0;
     int full = 0, ball = 0;
@@ -87,6 +91,67 @@ std::map<int, teacher::Example> read_existing(const std::filesystem::path& path,
     done[i] = e;
   }
   return done;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// The continuity pass (see collect.hpp). Returns the number of replaced examples.
+int repair_continuity(const system::System& system, const CollectOptions& options,
+                      std::map<int, teacher::Example>& done) {
+  const auto& tee = system.field().tee;
+  const auto aim = [&](const teacher::Example& e) { return std::atan2(e.hole[1] - tee[1], e.hole[0] - tee[0]); };
+  struct Job {
+    int index;
+    std::array<double, 2> hint;
+    double deviation;  ///< of the current example (1e9: none)
+  };
+  std::vector<Job> jobs;
+  const bool speed = options.teacher.learn_speed;
+  for (const auto& [i, e] : done) {
+    std::vector<std::pair<double, int>> near;
+    for (const auto& [j, n] : done)
+      if (j != i && n.found) near.emplace_back(std::hypot(n.hole[0] - e.hole[0], n.hole[1] - e.hole[1]), j);
+    if (near.size() < 2) continue;
+    std::sort(near.begin(), near.end());
+    near.resize(std::min<std::size_t>(4, near.size()));
+    std::vector<double> rel, v;
+    for (const auto& [d, j] : near) {
+      rel.push_back(done[j].angle - aim(done[j]));
+      v.push_back(done[j].speed);
+    }
+    const double rel_med = median(rel), v_med = median(v);
+    const double dev = e.found ? std::max(std::abs(e.angle - aim(e) - rel_med) / kAngleJump,
+                                          speed ? std::abs(e.speed - v_med) / kSpeedJump : 0.0)
+                               : 1e9;
+    if (dev > 1.0) jobs.push_back({i, {aim(e) + rel_med, speed ? v_med : options.teacher.fixed_speed}, dev});
+  }
+  if (jobs.empty()) return 0;
+  std::vector<teacher::Example> fresh(jobs.size());
+  system::parallel_for(system, static_cast<int>(jobs.size()), options.threads, [&](int k, system::SystemData& data) {
+    teacher::TeacherOptions t = options.teacher;
+    t.use_hint = true;
+    t.hint = jobs[static_cast<std::size_t>(k)].hint;
+    fresh[static_cast<std::size_t>(k)] = teacher::teach(system, data, done.at(jobs[static_cast<std::size_t>(k)].index).hole, t);
+  });
+  int replaced = 0;
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    teacher::Example& old = done[jobs[k].index];
+    const teacher::Example& e = fresh[k];
+    const double dev = std::max(std::abs(e.angle - jobs[k].hint[0]) / kAngleJump,
+                                speed ? std::abs(e.speed - jobs[k].hint[1]) / kSpeedJump : 0.0);
+    const int full = old.full_putts + e.full_putts, ball = old.ball_putts + e.ball_putts;
+    if (e.found && dev < jobs[k].deviation) {
+      old = e;
+      ++replaced;
+    }
+    old.full_putts = full;  // the repair's putts count whether it succeeded or not
+    old.ball_putts = ball;
+  }
+  return replaced;
 }
 
 }  // namespace
@@ -114,7 +179,8 @@ CollectResult collect(const system::System& system, const std::vector<std::array
   const std::string settings = collect_settings(system, holes, options);
   std::map<int, teacher::Example> done;
   std::error_code ec;
-  if (options.resume && std::filesystem::exists(out, ec)) done = read_existing(out, settings, holes);
+  int repaired = -1;
+  if (options.resume && std::filesystem::exists(out, ec)) done = read_existing(out, settings, holes, repaired);
   CollectResult result;
   result.resumed = static_cast<int>(done.size());
   std::vector<int> todo;
@@ -137,6 +203,11 @@ CollectResult collect(const system::System& system, const std::vector<std::array
         write_file_atomic(out, format_file(settings, done, system.field()));
         if (progress) progress(++finished, total, e);
       });
+  if (repaired < 0 || !todo.empty()) {  // a finished file has had its pass: resuming it changes nothing
+    repaired = repair_continuity(system, options, done);
+    write_file_atomic(out, format_file(settings, done, system.field(), repaired));
+  }
+  result.repaired = repaired;
   for (const auto& [i, e] : done) {
     result.examples.push_back(e);
     result.full_putts += e.full_putts;

@@ -30,8 +30,19 @@ struct CollectOptions {
 struct CollectResult {
   std::vector<teacher::Example> examples;  ///< index order, found or not
   int resumed = 0;                         ///< situations taken from the existing file
+  int repaired = 0;                        ///< examples replaced by the continuity pass
   int full_putts = 0, ball_putts = 0;      ///< over all situations, resumed ones included
 };
+
+/// After every situation is done, a continuity pass (thesis 3.2): an example whose angle relative
+/// to the aim, or whose speed, jumps away from the median of its (up to 4) nearest neighbours by
+/// more than kAngleJump / kSpeedJump — another strategy's window — and a situation without an
+/// example are taught again from the neighbours' values (TeacherOptions::hint); the new example
+/// replaces the old one if it sinks and lies closer to the neighbours. Its putts are added to the
+/// example's count. The pass is deterministic (it reads the finished first pass only) and ends
+/// in one atomic write.
+constexpr double kAngleJump = 0.05;  ///< [rad]
+constexpr double kSpeedJump = 0.1;   ///< [m/s]
 
 /// `progress(done, total, example)` after each situation (completion order).
 CollectResult collect(const system::System& system, const std::vector<std::array<double, 2>>& holes,

@@ -202,6 +202,20 @@ class Search {
                  probe, lo, hi, false);
   }
 
+  /// From a neighbour-derived club (the continuity hint): Broyden on the full system.
+  std::optional<Eigen::Vector2d> hinted_solve() {
+    const auto& c = sys_.config();
+    Eigen::Matrix2d j;
+    j << -distance_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * opt_.hint[1] * kLaunchRatio * kLaunchRatio;
+    const auto probe = [&](const Eigen::Vector2d& x) {
+      const auto [a, s] = clamp_club(x[0], x[1]);
+      return full(a, s);
+    };
+    const Eigen::Vector2d lo(c.angle_min, c.speed_min), hi(c.angle_max, sys_.module().club_speed_cap());
+    return solve(Eigen::Vector2d(opt_.hint[0], opt_.hint[1]), j, std::max(2, opt_.max_full_putts - 6), probe, lo, hi,
+                 false);
+  }
+
   /// Angle only: the secant on the lateral miss at the fixed club speed, on the full system.
   std::optional<Eigen::Vector2d> angle_solve() {
     const auto& c = sys_.config();
@@ -209,7 +223,8 @@ class Search {
     j << -distance_, 0.0, 0.0, 1.0;
     const double v = opt_.fixed_speed;
     const auto probe = [&](const Eigen::Vector2d& x) { return full(std::clamp(x[0], c.angle_min, c.angle_max), v); };
-    return solve(Eigen::Vector2d(aim_ - kLaunchBias, v), j, std::max(2, opt_.max_full_putts - 6), probe,
+    const double start = opt_.use_hint ? opt_.hint[0] : aim_ - kLaunchBias;
+    return solve(Eigen::Vector2d(start, v), j, std::max(2, opt_.max_full_putts - 6), probe,
                  Eigen::Vector2d(c.angle_min, v), Eigen::Vector2d(c.angle_max, v), true);
   }
 
@@ -257,7 +272,9 @@ class Search {
   Example run() {
     ex_.hole = hole_;
     std::optional<Eigen::Vector2d> club;
-    if (opt_.learn_speed) {
+    if (opt_.learn_speed && opt_.use_hint) {
+      club = hinted_solve();
+    } else if (opt_.learn_speed) {
       if (const auto launch = propose()) club = full_solve(*launch);
     } else {
       club = angle_solve();
