@@ -8,7 +8,7 @@ packages=(
   libmujoco-dev libeigen3-dev libnlopt-cxx-dev libnlopt-dev libyaml-cpp-dev nlohmann-json3-dev
   libcli11-dev libfmt-dev libspdlog-dev libpng-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
-  python3 python3-numpy python3-sklearn python3-matplotlib
+  python3 python3-numpy python3-sklearn python3-matplotlib python3-pytest
   valgrind  # bench/sim/putt_overhead.sh counts instructions with callgrind
 )
 
