@@ -189,7 +189,7 @@ CollectResult collect(const system::System& system, const std::vector<std::array
   std::vector<teacher::Example> fresh(todo.size());
   int finished = result.resumed;
   const int total = static_cast<int>(holes.size());
-  write_file_atomic(out, format_file(settings, done, system.field()));
+  if (!todo.empty()) write_file_atomic(out, format_file(settings, done, system.field()));  // the pass reruns
   system::parallel_for(
       system, static_cast<int>(todo.size()), options.threads,
       [&](int k, system::SystemData& data) {
