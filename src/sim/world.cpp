@@ -1,9 +1,11 @@
 #include "sim/world.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <mutex>
 
 #include <fmt/format.h>
 
@@ -124,22 +126,28 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
       <geom name="ball" type="sphere" size="{}" mass="{}" rgba="1 1 1 1"
             contype="{}" conaffinity="{}" condim="3" priority="0"/>
     </body>
-    <body name="hole_floor" mocap="true" pos="{} {} {}">
-      <geom name="hole_floor" type="cylinder" size="{} 0.005" pos="0 0 -0.005" rgba="0.1 0.1 0.1 1"
+    <body name="hole" mocap="true" pos="{} {} {}">
+      <geom name="hole_floor" type="cylinder" size="{} 0.005" pos="0 0 {}" rgba="0.1 0.1 0.1 1"
             contype="{}" conaffinity="{}" condim="3" priority="1" friction="0.5 0 0" solref="0.002 1"/>
-    </body>
 )",
                    f.tee[0], f.tee[1], f.height(f.tee[0], f.tee[1]) + f.ball.radius, f.ball.radius,
                    f.ball.mass, kLaneGroup | kCupGroup, kLaneGroup | kCupGroup | kClubGroup, f.hole.position[0],
-                   f.hole.position[1], z_min - 1.0, hole_r + seg_t, kCupGroup, kNoAffinity);
-  for (int i = 0; i < o.hole_segments; ++i)
-    x += fmt::format(R"(    <body name="hole_wall_{}" mocap="true" pos="0 0 {}">
-      <geom type="box" size="{} {} {}" pos="0 0 {}" rgba="0.1 0.1 0.1 1" contype="{}"
-            conaffinity="{}" condim="3" priority="1" friction="0.3 0 0" solref="0.004 {}"/>
-    </body>
+                   f.hole.position[1], z_min - 1.0, hole_r + seg_t, -f.hole.depth - 0.005, kCupGroup,
+                   kNoAffinity);
+  // The cup is one mocap body (a body per wall segment made collision 2x dearer): the walls hang
+  // from the body's plane, which set_hole puts on the tangent plane at the hole.
+  for (int i = 0; i < o.hole_segments; ++i) {
+    const double phi = 2.0 * kPi * i / o.hole_segments;
+    x += fmt::format(R"(      <geom name="hole_wall_{}" type="box" size="{} {} {}" pos="{} {} {}" quat="{} 0 0 {}"
+            rgba="0.1 0.1 0.1 1" contype="{}" conaffinity="{}" condim="3" priority="1"
+            friction="0.3 0 0" solref="0.004 {}"/>
 )",
-                     i, z_min - 1.0, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, -0.5 * f.hole.depth,
-                     kCupGroup, kNoAffinity, damping_ratio_for_restitution(o.cup_restitution));
+                     i, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, (hole_r + 0.5 * seg_t) * std::cos(phi),
+                     (hole_r + 0.5 * seg_t) * std::sin(phi), -0.5 * f.hole.depth, std::cos(0.5 * phi),
+                     std::sin(0.5 * phi), kCupGroup, kNoAffinity,
+                     damping_ratio_for_restitution(o.cup_restitution));
+  }
+  x += "    </body>\n";
   x += o.extra_worldbody_mjcf;
   x += "  </worldbody>\n";
   if (!o.extra_actuator_mjcf.empty()) x += "  <actuator>\n" + o.extra_actuator_mjcf + "  </actuator>\n";
@@ -149,6 +157,8 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
 
 World::World(field::Field field, const WorldOptions& options)
     : field_(std::move(field)), options_(options) {
+  static std::atomic<std::uint64_t> next_instance_id{1};
+  instance_id_ = next_instance_id.fetch_add(1);
   options_.validate();
   field_.validate();
   mjcf_ = build_world_mjcf(field_, options_);
@@ -161,7 +171,12 @@ World::World(field::Field field, const WorldOptions& options)
     throw Error("MuJoCo: cannot create the in-memory model file");
   std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kName)], mjcf_.data(), mjcf_.size());
   char error[1024] = "";
-  model_.reset(mj_loadXML(kName, vfs.get(), error, sizeof error));
+  {
+    // MuJoCo's XML loader keeps the last model in a global (mj_saveLastXML): one at a time.
+    static std::mutex load_mutex;
+    const std::lock_guard<std::mutex> lock(load_mutex);
+    model_.reset(mj_loadXML(kName, vfs.get(), error, sizeof error));
+  }
   mj_deleteVFS(vfs.get());
   if (!model_) throw Error(fmt::format("MuJoCo rejected the generated model: {}", error));
 
@@ -176,8 +191,8 @@ World::World(field::Field field, const WorldOptions& options)
   ids_.ground_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "ground_contact")];
   ids_.surface_geom = mj_name2id(m, mjOBJ_GEOM, "lane_surface");
   ids_.hole_floor_geom = mj_name2id(m, mjOBJ_GEOM, "hole_floor");
-  ids_.hole_floor_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_floor")];
-  ids_.first_wall_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_wall_0")];
+  ids_.hole_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole")];
+  ids_.first_wall_geom = mj_name2id(m, mjOBJ_GEOM, "hole_wall_0");
 
   // Fill the heightfield from the surface function (normalised to [0, 1] of the elevation).
   const int hf = 0;
@@ -193,8 +208,10 @@ World::World(field::Field field, const WorldOptions& options)
       data[r * ncol + c] = static_cast<float>(std::clamp((z - z0) / elevation, 0.0, 1.0));
     }
 
-  // One process-wide filter; it acts only on mjData marked as ours (see userdata layout).
-  mjcb_contactfilter = hole_contact_filter;
+  // One process-wide filter, a pure function of (model, data) that acts only on mjData marked as
+  // ours (see userdata layout). Set once: assigning it while other threads step would be a race.
+  static std::once_flag filter_once;
+  std::call_once(filter_once, [] { mjcb_contactfilter = hole_contact_filter; });
 }
 
 DataPtr World::make_data() const {
@@ -227,34 +244,63 @@ void World::set_hole(mjData* d, std::array<double, 2> p) const {
   d->userdata[kUserHoleX] = p[0];
   d->userdata[kUserHoleY] = p[1];
   d->userdata[kUserHoleRadius] = r;
-  mjtNum* floor = d->mocap_pos + 3 * ids_.hole_floor_mocap;
-  floor[0] = p[0];
-  floor[1] = p[1];
-  floor[2] = zc - field_.hole.depth;
-  const int n = options_.hole_segments;
-  const double seg_t = 0.01;
-  for (int i = 0; i < n; ++i) {
-    const double phi = 2.0 * kPi * i / n;
+  // The cup's plane: the tangent plane at the hole, lowered along its normal just enough that no
+  // wall top sticks out of the ground at its chord's centre and ends (as the vertical walls of
+  // one body per segment did; zero on a plane).
+  const double inv = 1.0 / std::sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
+  const double n[3] = {-g[0] * inv, -g[1] * inv, inv};
+  const int segments = options_.hole_segments;
+  const double half = r * std::tan(kPi / segments);
+  double drop = 0.0;
+  for (int i = 0; i < segments; ++i) {
+    const double phi = 2.0 * kPi * i / segments;
     const double ux = std::cos(phi), uy = std::sin(phi);
-    // Top of the segment at the lowest ground along its chord, so it never sticks out.
-    const double half = r * std::tan(kPi / n);
-    double top = field_.height(p[0] + r * ux, p[1] + r * uy);
-    for (double s : {-half, half})
-      top = std::min(top, field_.height(p[0] + r * ux - s * uy, p[1] + r * uy + s * ux));
-    mjtNum* pos = d->mocap_pos + 3 * (ids_.first_wall_mocap + i);
-    pos[0] = p[0] + (r + 0.5 * seg_t) * ux;
-    pos[1] = p[1] + (r + 0.5 * seg_t) * uy;
-    pos[2] = top;
-    mjtNum* quat = d->mocap_quat + 4 * (ids_.first_wall_mocap + i);
-    quat[0] = std::cos(0.5 * phi);
-    quat[1] = 0.0;
-    quat[2] = 0.0;
-    quat[3] = std::sin(0.5 * phi);
+    for (double s : {-half, 0.0, half}) {
+      const double x = p[0] + r * ux - s * uy, y = p[1] + r * uy + s * ux;
+      const double plane = zc + g[0] * (x - p[0]) + g[1] * (y - p[1]);
+      drop = std::max(drop, (plane - field_.height(x, y)) * inv);
+    }
+  }
+  mjtNum* pos = d->mocap_pos + 3 * ids_.hole_mocap;
+  pos[0] = p[0] - drop * n[0];
+  pos[1] = p[1] - drop * n[1];
+  pos[2] = zc - drop * n[2];
+  // Rotation taking +z to n, about the horizontal axis z x n (as update_ground_contact).
+  mjtNum* quat = d->mocap_quat + 4 * ids_.hole_mocap;
+  const double s = std::hypot(n[0], n[1]);
+  if (s < 1e-12) {
+    quat[0] = 1.0;
+    quat[1] = quat[2] = quat[3] = 0.0;
+  } else {
+    const double half_angle = 0.5 * std::atan2(s, n[2]);
+    quat[0] = std::cos(half_angle);
+    quat[1] = -n[1] / s * std::sin(half_angle);
+    quat[2] = n[0] / s * std::sin(half_angle);
+    quat[3] = 0.0;
   }
 }
 
 std::array<double, 2> World::hole_position(const mjData* d) const {
   return {d->userdata[kUserHoleX], d->userdata[kUserHoleY]};
+}
+
+BallState World::ball_state(const mjData* d) const {
+  BallState s;
+  std::copy_n(d->qpos + ids_.ball_qpos, 7, s.qpos.begin());
+  std::copy_n(d->qvel + ids_.ball_dof, 6, s.qvel.begin());
+  std::copy_n(d->qacc_warmstart + ids_.ball_dof, 6, s.qacc_warmstart.begin());
+  s.ground_normal = d->userdata[kUserGroundNormal];
+  s.time = d->time;
+  return s;
+}
+
+void World::set_ball_state(mjData* d, const BallState& s) const {
+  std::copy_n(s.qpos.begin(), 7, d->qpos + ids_.ball_qpos);
+  std::copy_n(s.qvel.begin(), 6, d->qvel + ids_.ball_dof);
+  std::copy_n(s.qacc_warmstart.begin(), 6, d->qacc_warmstart + ids_.ball_dof);
+  d->userdata[kUserGroundNormal] = s.ground_normal;
+  d->time = s.time;
+  update_ground_contact(d);
 }
 
 void World::place_ball(mjData* d, std::array<double, 2> xy) const {
