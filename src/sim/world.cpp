@@ -6,6 +6,7 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -126,38 +127,51 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
       <geom name="ball" type="sphere" size="{}" mass="{}" rgba="1 1 1 1"
             contype="{}" conaffinity="{}" condim="3" priority="0"/>
     </body>
-    <body name="hole" mocap="true" pos="{} {} {}">
+)",
+                   f.tee[0], f.tee[1], f.height(f.tee[0], f.tee[1]) + f.ball.radius, f.ball.radius,
+                   f.ball.mass, kLaneGroup | kCupGroup, kLaneGroup | kCupGroup | kClubGroup);
+  const bool one_body = o.cup == CupBodies::kOne;
+  // The floor's body is the cup's (kOne) or its own (kPerSegment); its top is at the body's z
+  // minus the depth (kOne) or at the body's z (kPerSegment).
+  x += fmt::format(R"(    <body name="hole" mocap="true" pos="{} {} {}">
       <geom name="hole_floor" type="cylinder" size="{} 0.005" pos="0 0 {}" rgba="0.1 0.1 0.1 1"
             contype="{}" conaffinity="{}" condim="3" priority="1" friction="0.5 0 0" solref="0.002 1"/>
 )",
-                   f.tee[0], f.tee[1], f.height(f.tee[0], f.tee[1]) + f.ball.radius, f.ball.radius,
-                   f.ball.mass, kLaneGroup | kCupGroup, kLaneGroup | kCupGroup | kClubGroup, f.hole.position[0],
-                   f.hole.position[1], z_min - 1.0, hole_r + seg_t, -f.hole.depth - 0.005, kCupGroup,
-                   kNoAffinity);
-  // The cup is one mocap body (a body per wall segment made collision 2x dearer): the walls hang
-  // from the body's plane, which set_hole puts on the tangent plane at the hole.
+                   f.hole.position[0], f.hole.position[1], z_min - 1.0, hole_r + seg_t,
+                   (one_body ? -f.hole.depth : 0.0) - 0.005, kCupGroup, kNoAffinity);
+  if (!one_body) x += "    </body>\n";
   for (int i = 0; i < o.hole_segments; ++i) {
     const double phi = 2.0 * kPi * i / o.hole_segments;
+    const double rc = one_body ? hole_r + 0.5 * seg_t : 0.0;
+    if (!one_body)
+      x += fmt::format(R"(    <body name="hole_wall_{}" mocap="true" pos="0 0 {}">
+)", i, z_min - 1.0);
     x += fmt::format(R"(      <geom name="hole_wall_{}" type="box" size="{} {} {}" pos="{} {} {}" quat="{} 0 0 {}"
             rgba="0.1 0.1 0.1 1" contype="{}" conaffinity="{}" condim="3" priority="1"
             friction="0.3 0 0" solref="0.004 {}"/>
 )",
-                     i, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, (hole_r + 0.5 * seg_t) * std::cos(phi),
-                     (hole_r + 0.5 * seg_t) * std::sin(phi), -0.5 * f.hole.depth, std::cos(0.5 * phi),
-                     std::sin(0.5 * phi), kCupGroup, kNoAffinity,
+                     i, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, rc * std::cos(phi),
+                     rc * std::sin(phi), -0.5 * f.hole.depth, one_body ? std::cos(0.5 * phi) : 1.0,
+                     one_body ? std::sin(0.5 * phi) : 0.0, kCupGroup, kNoAffinity,
                      damping_ratio_for_restitution(o.cup_restitution));
+    if (!one_body) x += "    </body>\n";
   }
-  x += "    </body>\n";
+  if (one_body) x += "    </body>\n";
   x += o.extra_worldbody_mjcf;
   x += "  </worldbody>\n";
   // Static geoms (world, ground box, cup) never touch each other (contype only), but MuJoCo would
   // still test every pair of them each step: 130 pairs, half of all collision work.
-  x += R"(  <contact>
-    <exclude body1="world" body2="hole"/>
-    <exclude body1="world" body2="ground_contact"/>
-    <exclude body1="ground_contact" body2="hole"/>
-  </contact>
-)";
+  // Static geoms (world, ground box, cup) never touch each other (contype only), but MuJoCo
+  // would still test every pair of the world's and the mocap bodies' geoms each step (130
+  // pairs, half of all collision work).
+  std::vector<std::string> mocap{"ground_contact", "hole"};
+  if (!one_body)
+    for (int i = 0; i < o.hole_segments; ++i) mocap.push_back(fmt::format("hole_wall_{}", i));
+  x += "  <contact>\n";
+  for (const auto& body : mocap) x += fmt::format("    <exclude body1=\"world\" body2=\"{}\"/>\n", body);
+  for (std::size_t i = 1; i < mocap.size(); ++i)
+    x += fmt::format("    <exclude body1=\"ground_contact\" body2=\"{}\"/>\n", mocap[i]);
+  x += "  </contact>\n";
   if (!o.extra_actuator_mjcf.empty()) x += "  <actuator>\n" + o.extra_actuator_mjcf + "  </actuator>\n";
   x += "</mujoco>\n";
   return x;
@@ -201,6 +215,8 @@ World::World(field::Field field, const WorldOptions& options)
   ids_.hole_floor_geom = mj_name2id(m, mjOBJ_GEOM, "hole_floor");
   ids_.hole_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole")];
   ids_.first_wall_geom = mj_name2id(m, mjOBJ_GEOM, "hole_wall_0");
+  if (options_.cup == CupBodies::kPerSegment)
+    ids_.first_wall_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_wall_0")];
 
   // Fill the heightfield from the surface function (normalised to [0, 1] of the elevation).
   const int hf = 0;
@@ -252,9 +268,13 @@ void World::set_hole(mjData* d, std::array<double, 2> p) const {
   d->userdata[kUserHoleX] = p[0];
   d->userdata[kUserHoleY] = p[1];
   d->userdata[kUserHoleRadius] = r;
+  if (options_.cup == CupBodies::kPerSegment) {
+    set_segmented_cup(d, p);
+    return;
+  }
   // The cup's plane: the tangent plane at the hole, lowered along its normal just enough that no
-  // wall top sticks out of the ground at its chord's centre and ends (as the vertical walls of
-  // one body per segment did; zero on a plane).
+  // wall top sticks out of the ground at its chord's centre and ends (the rule of kPerSegment's
+  // vertical walls; zero on a plane).
   const double inv = 1.0 / std::sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
   const double n[3] = {-g[0] * inv, -g[1] * inv, inv};
   const int segments = options_.hole_segments;
@@ -285,6 +305,34 @@ void World::set_hole(mjData* d, std::array<double, 2> p) const {
     quat[1] = -n[1] / s * std::sin(half_angle);
     quat[2] = n[0] / s * std::sin(half_angle);
     quat[3] = 0.0;
+  }
+}
+
+void World::set_segmented_cup(mjData* d, std::array<double, 2> p) const {
+  const double r = 0.5 * field_.hole.diameter;
+  mjtNum* floor = d->mocap_pos + 3 * ids_.hole_mocap;
+  floor[0] = p[0];
+  floor[1] = p[1];
+  floor[2] = field_.height(p[0], p[1]) - field_.hole.depth;
+  const int n = options_.hole_segments;
+  const double seg_t = 0.01;
+  for (int i = 0; i < n; ++i) {
+    const double phi = 2.0 * kPi * i / n;
+    const double ux = std::cos(phi), uy = std::sin(phi);
+    // Top of the segment at the lowest ground along its chord, so it never sticks out.
+    const double half = r * std::tan(kPi / n);
+    double top = field_.height(p[0] + r * ux, p[1] + r * uy);
+    for (double s : {-half, half})
+      top = std::min(top, field_.height(p[0] + r * ux - s * uy, p[1] + r * uy + s * ux));
+    mjtNum* pos = d->mocap_pos + 3 * (ids_.first_wall_mocap + i);
+    pos[0] = p[0] + (r + 0.5 * seg_t) * ux;
+    pos[1] = p[1] + (r + 0.5 * seg_t) * uy;
+    pos[2] = top;
+    mjtNum* quat = d->mocap_quat + 4 * (ids_.first_wall_mocap + i);
+    quat[0] = std::cos(0.5 * phi);
+    quat[1] = 0.0;
+    quat[2] = 0.0;
+    quat[3] = std::sin(0.5 * phi);
   }
 }
 

@@ -2,9 +2,9 @@
 /// The MuJoCo world of one field: heightfield lane, borders, ball and a movable hole.
 ///
 /// Model/data split: a `World` is immutable after construction (it owns the `mjModel` and the
-/// field); every simulation run owns its own `mjData` (`World::make_data`). The hole is one mocap
-/// body (cup floor and wall segments), so moving it between putts changes `mjData` only and never
-/// re-parses the model.
+/// field); every simulation run owns its own `mjData` (`World::make_data`). The hole is a mocap
+/// body (cup floor and wall segments; WorldOptions::cup), so moving it between putts changes
+/// `mjData` only and never re-parses the model.
 ///
 /// Threads: a `World` may be shared by any number of threads, each stepping its own `mjData`;
 /// worlds may be constructed concurrently. The process-wide `mjcb_contactfilter` is set once,
@@ -35,11 +35,23 @@ enum class GroundContact {
   kHeightfield,   ///< MuJoCo's heightfield contacts (kept for comparison; see README)
 };
 
+/// How the cup (floor and wall segments) is made of mocap bodies.
+enum class CupBodies {
+  /// One body: vertical walls on the hole's tangent plane, tilted with it, lowered so that no wall
+  /// top sticks out of the ground (on level ground: kPerSegment's geometry exactly). Collision
+  /// costs half of kPerSegment's (MuJoCo's broadphase sorts every pair of overlapping bodies).
+  kOne,
+  /// A body per wall segment and one for the floor: vertical walls, each top at the lowest
+  /// ground along its chord, the floor level (the cup before notes/speed.md).
+  kPerSegment,
+};
+
 /// Simulation settings shared by every world.
 struct WorldOptions {
   GroundContact ground = GroundContact::kTangentPlane;
   double timestep = 0.001;   ///< [s]; PHYSICS.md: at or under 1 ms for a small fast sphere
   int hole_segments = 24;    ///< cup wall made of this many boxes
+  CupBodies cup = CupBodies::kOne;
   /// Below this rolling speed the resistance torque is scaled down linearly, so a resting ball
   /// does not chatter (a regularised Coulomb law). [rad/s]
   double resistance_smoothing = 0.05;
@@ -68,9 +80,10 @@ struct WorldIds {
   int ground_geom = -1;     ///< what the ball rolls on: the tangent box or the heightfield
   int ground_mocap = -1;
   int surface_geom = -1;    ///< the heightfield (drawn; collides only in kHeightfield mode)
-  int hole_mocap = -1;       ///< the cup: one mocap body carrying the floor and the walls
+  int hole_mocap = -1;        ///< the cup's body (kOne) or the floor's (kPerSegment)
   int hole_floor_geom = -1;
-  int first_wall_geom = -1;  ///< cup wall segments are consecutive geoms of the cup body
+  int first_wall_geom = -1;   ///< cup wall segments are consecutive geoms
+  int first_wall_mocap = -1;  ///< kPerSegment: their consecutive bodies (kOne: -1)
 };
 
 /// The ball's part of a simulation state: enough to continue the ball's motion in another
@@ -141,6 +154,8 @@ class World {
  private:
   field::Field field_;
   WorldOptions options_;
+  void set_segmented_cup(mjData* d, std::array<double, 2> position) const;
+
   ModelPtr model_;
   WorldIds ids_;
   std::string mjcf_;
