@@ -18,6 +18,11 @@ sim::World make_world_with_arm(field::Field field, const robot::WamMount& mount,
                                sim::WorldOptions options) {
   options.extra_worldbody_mjcf = robot::wam_bodies_mjcf(mount);
   options.extra_actuator_mjcf = robot::wam_actuators_mjcf();
+  // Only the club head touches anything (the ball); the rest of the arm is drawn only.
+  options.extra_bodies_off_static = {"wam_base", "wam_link1", "wam_link2", "wam_link3", "wam_link4",
+                                     "wam_link5", "wam_link6", "wam_link7", "wam_club"};
+  options.extra_bodies_off_ball = {"wam_base", "wam_link1", "wam_link2", "wam_link3",
+                                   "wam_link4", "wam_link5", "wam_link6", "wam_link7"};
   return sim::World(std::move(field), options);
 }
 
@@ -307,6 +312,8 @@ sim::World make_ball_world(const sim::World& arm_world) {
   sim::WorldOptions o = arm_world.options();
   o.extra_worldbody_mjcf.clear();
   o.extra_actuator_mjcf.clear();
+  o.extra_bodies_off_static.clear();
+  o.extra_bodies_off_ball.clear();
   return sim::World(arm_world.field(), o);
 }
 
@@ -425,7 +432,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   const long settle_steps = std::lround(options.settle_timeout / dt);
   const double min_rest_time = at_rest_start ? kAtRestSettleTime : 0.2;
   bool settled = false;
-  long kinematic_steps = 0;
+  long kinematic_steps = 0;  // steps not simulated here: kinematic approach or restored
   if (kinematic) {
     // The module's Rest motion with a plant that follows the reference exactly: its reference
     // does not depend on the measurement in Rest, so it is that of a simulated approach.
@@ -447,7 +454,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   }
   // Approach cache (kApproach, no noise): a hit restores the state at the hit request.
   const bool cacheable = options.rest_start == RestStart::kApproach && valid_angle &&
-                         !(options.torque_noise > 0.0);
+                         !(options.torque_noise > 0.0) && local == nullptr;
   std::vector<double> fingerprint;
   PuttScratch::Impl::AtRest* cached = nullptr;
   if (cacheable) {
@@ -462,6 +469,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     mj_copyData(d, world.model(), cached->data.get());
     run.restore(*cached->module, cached->steps);
     r = cached->result;
+    kinematic_steps = cached->steps;
     settled = true;
   }
   for (long k = 0; k < settle_steps && !settled; ++k) {

@@ -168,9 +168,16 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
   if (!one_body)
     for (int i = 0; i < o.hole_segments; ++i) mocap.push_back(fmt::format("hole_wall_{}", i));
   x += "  <contact>\n";
-  for (const auto& body : mocap) x += fmt::format("    <exclude body1=\"world\" body2=\"{}\"/>\n", body);
-  for (std::size_t i = 1; i < mocap.size(); ++i)
-    x += fmt::format("    <exclude body1=\"ground_contact\" body2=\"{}\"/>\n", mocap[i]);
+  const auto exclude = [&x](const std::string& a, const std::string& b) {
+    x += fmt::format("    <exclude body1=\"{}\" body2=\"{}\"/>\n", a, b);
+  };
+  for (const auto& body : mocap) exclude("world", body);
+  for (std::size_t i = 1; i < mocap.size(); ++i) exclude("ground_contact", mocap[i]);
+  for (const auto& body : o.extra_bodies_off_static) {
+    exclude("world", body);
+    for (const auto& m : mocap) exclude(m, body);
+  }
+  for (const auto& body : o.extra_bodies_off_ball) exclude("ball", body);
   x += "  </contact>\n";
   if (!o.extra_actuator_mjcf.empty()) x += "  <actuator>\n" + o.extra_actuator_mjcf + "  </actuator>\n";
   x += "</mujoco>\n";
