@@ -180,6 +180,7 @@ std::array<double, 2> noisy_ball_start(const sim::World& world, const FullPuttOp
 constexpr double kBallSettleTime = 0.3;  // [s] ball at rest in its contact (time constant 0.02 s)
 constexpr double kClubReachMargin = 0.05;  // [m] tracking error, idle drift
 constexpr double kHandoffHysteresis = 0.05;  // [m] hand-off this much beyond the fallback radius
+constexpr int kMaxHandoffFallbacks = 3;
 constexpr std::size_t kSettledCacheSize = 8;
 
 bool same_ids(const sim::WorldIds& a, const sim::WorldIds& b) {
@@ -574,6 +575,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   const double ball_radius = world.field().ball.radius;
   const double club_radius = world.model()->geom_rbound[model.club_geom()];
   bool may_hand_off = ball_world != nullptr;
+  double came_back_at = -1.0;  // [s] time of the last fallback: no new hand-off until past it
   const mjData* ball_data = d;  // where the ball's final state is
   long k = 1;
   for (; k <= max_steps && !decided; ++k) {
@@ -584,7 +586,8 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
       const double* bv = d->qvel + ball_dof;
       r.launch = {std::atan2(bv[1], bv[0]), std::hypot(bv[0], bv[1])};
     }
-    if (decided || !may_hand_off || k < launch_step || r.touching_ball) continue;
+    if (decided || !may_hand_off || k < launch_step || r.touching_ball || d->time <= came_back_at)
+      continue;
     const ModuleData& md = run.module();
     if (md.state != ModuleState::kBraking && md.state != ModuleState::kIdle) continue;
     // How far the club can still go: the rest of the braking ramp (bounded by all of it) and
@@ -615,6 +618,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
       const Eigen::Vector3d b(bd->qpos + qb);
       if (!decided && (b - club).norm() < fallback_radius) {
         came_back = true;
+        came_back_at = bd->time;
         break;
       }
     }
@@ -628,7 +632,8 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     ++r.handoff_fallbacks;
     tracker = tracker_at_handoff;
     decided = false;
-    may_hand_off = false;  // once back, the arm is simulated to the end
+    // Hand off again once past the time the ball came back, when it is clear again.
+    may_hand_off = r.handoff_fallbacks < kMaxHandoffFallbacks;
   }
   r.arm_steps = run.steps() - kinematic_steps;
   if (ball_data != d) {

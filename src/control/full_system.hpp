@@ -145,7 +145,7 @@ struct FullPuttResult {
   bool handed_off = false;
   double handoff_time = 0.0;  ///< [s] after the first contact (0 without a hand-off)
   /// Ball-only rolls abandoned because the ball came back near where the club was; the arm was
-  /// then simulated on from the hand-off, exactly as without one.
+  /// then simulated on from that hand-off, exactly as without one (at most 3).
   int handoff_fallbacks = 0;
   long arm_steps = 0;  ///< physics steps simulated with the arm (rest, hit and roll until hand-off)
 };
@@ -186,7 +186,8 @@ robot::Vector7 rest_joint_positions(const ModuleModel& model, double angle);
 /// the club head than the club can still travel (braking: |v_brake0| brake_time + lift + 5 cm; idle:
 /// 5 cm) plus both radii plus 10 cm, the ball's state goes to options.ball_world and the roll ends
 /// there. Should the ball come back within 5 cm of that reach of where the club was, the
-/// ball-only roll is dropped and the arm simulated on from the hand-off (handoff_fallbacks).
+/// ball-only roll is dropped and the arm simulated on from the hand-off (handoff_fallbacks; the
+/// hand-off is tried again after that time, once the ball is clear, up to 3 times).
 /// On return `d` holds the arm as at the hand-off and the ball as at the end.
 ///
 /// `scratch`: per-thread memory (see PuttScratch); nullptr: made locally. Throws InputError for a
