@@ -151,10 +151,14 @@ struct FullPuttResult {
 };
 
 /// Caller-owned scratch of full_system_putt, one per thread (not itself thread-safe): the ball
-/// world's mjData and a small cache of settled ball states. It holds memory and caches only, never
-/// state that changes a result: a putt gives the same bits with a fresh scratch, a used one, or
-/// none (then full_system_putt makes what it needs locally, which costs an mjData and, for
-/// RestStart::kAtRestPose, a 0.3 s ball settle per call).
+/// world's mjData, the settled balls of kKinematicApproach / kAtRestPose, and an approach cache
+/// for kApproach without torque noise (the 4 latest states at the hit request, keyed by world,
+/// module model (address and what of it the approach reads), angle, ball start, hole and
+/// settle_timeout; a hit restores the state and skips the simulated approach). It holds memory
+/// and caches only, never state that changes a result: a putt gives the same bits with a fresh
+/// scratch, a used one, or none (nullptr: made locally, no approach cache). With an approach from
+/// the cache, FullPuttResult::timing covers only the core updates run in the call. A scratch must
+/// not outlive the module models it was used with.
 class PuttScratch {
  public:
   PuttScratch();
@@ -182,12 +186,14 @@ robot::Vector7 rest_joint_positions(const ModuleModel& model, double angle);
 /// inputs (options included) give the same bits, on any thread, with any `scratch`.
 ///
 /// Hand-off (options.ball_world set): once the launch is measured, the module is braking or idle
-/// (it never hits again in a putt), the club does not touch the ball and the ball is farther from
-/// the club head than the club can still travel (braking: |v_brake0| brake_time + lift + 5 cm; idle:
-/// 5 cm) plus both radii plus 10 cm, the ball's state goes to options.ball_world and the roll ends
-/// there. Should the ball come back within 5 cm of that reach of where the club was, the
-/// ball-only roll is dropped and the arm simulated on from the hand-off (handoff_fallbacks; the
-/// hand-off is tried again after that time, once the ball is clear, up to 3 times).
+/// (it never hits again in a putt), the club does not touch the ball and the ball's centre is
+/// farther from the club head's than R + 5 cm, R = the club's remaining reach (braking:
+/// |v_brake0| brake_time + brake_lift_height, a bound on the rest of the ramp; idle: 0) + 5 cm
+/// (tracking, drift) + the head's bounding radius + the ball's radius, the ball's state goes to
+/// options.ball_world and the roll ends there; the arm is no longer simulated (nor its torque
+/// noise). Should the ball come back within R of where the club head was, the ball-only roll is
+/// dropped and the arm simulated on from the hand-off, exactly as without one
+/// (handoff_fallbacks; tried again past that time, once the ball is clear, up to 3 times).
 /// On return `d` holds the arm as at the hand-off and the ball as at the end.
 ///
 /// `scratch`: per-thread memory (see PuttScratch); nullptr: made locally. Throws InputError for a
