@@ -5,6 +5,10 @@
 #include <cmath>
 #include <random>
 
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+
 #include "core/rng.hpp"
 #include "robot/wam_model.hpp"
 
@@ -14,6 +18,11 @@ sim::World make_world_with_arm(field::Field field, const robot::WamMount& mount,
                                sim::WorldOptions options) {
   options.extra_worldbody_mjcf = robot::wam_bodies_mjcf(mount);
   options.extra_actuator_mjcf = robot::wam_actuators_mjcf();
+  // Only the club head touches anything (the ball); the rest of the arm is drawn only.
+  options.extra_bodies_off_static = {"wam_base", "wam_link1", "wam_link2", "wam_link3", "wam_link4",
+                                     "wam_link5", "wam_link6", "wam_link7", "wam_club"};
+  options.extra_bodies_off_ball = {"wam_base", "wam_link1", "wam_link2", "wam_link3",
+                                   "wam_link4", "wam_link5", "wam_link6", "wam_link7"};
   return sim::World(std::move(field), options);
 }
 
@@ -53,6 +62,27 @@ void LockstepRunner::step() {
   }
   world_->step(d_);
   ++steps_;
+}
+
+void LockstepRunner::restore(const ModuleData& data, long steps) {
+  data_ = data;
+  steps_ = steps;
+  durations_us_.clear();
+}
+
+void LockstepRunner::tick_without_physics() {
+  if (steps_ % steps_per_tick_ == 0) {
+    if (data_.tick % model_->config().robot_update_divider == 0)
+      robot_update(*model_, data_, perception_->perceive(d_->time));
+    const auto t0 = std::chrono::steady_clock::now();
+    core_update(*model_, data_, d_);
+    const auto t1 = std::chrono::steady_clock::now();
+    durations_us_.push_back(
+        static_cast<float>(std::chrono::duration<double, std::micro>(t1 - t0).count()));
+  }
+  const long n = steps_per_tick_ - steps_ % steps_per_tick_;
+  d_->time += static_cast<double>(n) * world_->model()->opt.timestep;
+  steps_ += n;
 }
 
 CoreTiming LockstepRunner::timing() const {
@@ -147,17 +177,237 @@ std::array<double, 2> noisy_ball_start(const sim::World& world, const FullPuttOp
   return xy;
 }
 
+constexpr double kBallSettleTime = 0.3;  // [s] ball at rest in its contact (time constant 0.02 s)
+constexpr double kClubReachMargin = 0.05;  // [m] tracking error, idle drift
+constexpr double kHandoffHysteresis = 0.05;  // [m] hand-off this much beyond the fallback radius
+constexpr int kMaxHandoffFallbacks = 3;
+constexpr std::size_t kSettledCacheSize = 8;
+
+bool same_ids(const sim::WorldIds& a, const sim::WorldIds& b) {
+  return a.ball_body == b.ball_body && a.ball_geom == b.ball_geom && a.ball_qpos == b.ball_qpos &&
+         a.ball_dof == b.ball_dof && a.ground_geom == b.ground_geom &&
+         a.ground_mocap == b.ground_mocap && a.surface_geom == b.surface_geom &&
+         a.hole_mocap == b.hole_mocap && a.first_wall_mocap == b.first_wall_mocap && a.hole_floor_geom == b.hole_floor_geom &&
+         a.first_wall_geom == b.first_wall_geom;
+}
+
+/// The ball world must be the arm world without the arm: same field and options, and the same
+/// indices for everything but the arm (the outcome tracker reads either data with the arm
+/// world's indices).
+void check_ball_world(const sim::World& world, const sim::World& ball) {
+  const auto& a = world.options();
+  const auto& b = ball.options();
+  const bool ok = same_ids(world.ids(), ball.ids()) && world.field().name == ball.field().name &&
+                  a.ground == b.ground && a.timestep == b.timestep &&
+                  a.hole_segments == b.hole_segments && a.cup == b.cup &&
+                  a.resistance_smoothing == b.resistance_smoothing &&
+                  a.cup_restitution == b.cup_restitution &&
+                  a.rolling_slip_limit == b.rolling_slip_limit &&
+                  a.ground_time_constant == b.ground_time_constant &&
+                  b.extra_worldbody_mjcf.empty() && world.model()->nuserdata == ball.model()->nuserdata;
+  if (!ok)
+    throw InputError(fmt::format("options.ball_world: expected a ball-only world of field '{}' with "
+                                 "the arm world's options (make_ball_world), got field '{}'",
+                                 world.field().name, ball.field().name));
+}
+
+}  // namespace
+
+struct PuttScratch::Impl {
+  // mjData of a ball world; remade when another world is used.
+  sim::DataPtr ball_data;
+  std::uint64_t ball_data_world = 0;
+  // Settled balls: a deterministic function of (settle world, start, hole), so a hit gives the
+  // bits of settling anew.
+  struct Settled {
+    std::uint64_t world = 0;
+    std::array<double, 2> start{}, hole{};
+    sim::BallState state;
+  };
+  std::vector<Settled> settled;
+  std::size_t next_slot = 0;
+
+  // Arm and ball at the hit request after a simulated approach (RestStart::kApproach), by
+  // everything the approach depends on: a hit continues with exactly the bits of the approach.
+  struct AtRest {
+    std::uint64_t world = 0;
+    const ModuleModel* model = nullptr;
+    std::vector<double> fingerprint;
+    double angle = 0.0, settle_timeout = 0.0;
+    std::array<double, 2> start{}, hole{};
+    sim::DataPtr data;
+    std::unique_ptr<ModuleData> module;
+    long steps = 0;
+    FullPuttResult result;  // the bookkeeping of the approach
+  };
+  std::vector<AtRest> at_rest;
+  std::size_t next_at_rest = 0;
+
+  AtRest& at_rest_slot();
+
+  mjData* data_for(const sim::World& w) {
+    if (!ball_data || ball_data_world != w.instance_id()) {
+      ball_data = w.make_data();
+      ball_data_world = w.instance_id();
+    }
+    return ball_data.get();
+  }
+  const sim::BallState* find(std::uint64_t w, std::array<double, 2> start,
+                             std::array<double, 2> hole) const {
+    for (const auto& s : settled)
+      if (s.world == w && s.start == start && s.hole == hole) return &s.state;
+    return nullptr;
+  }
+  void store(std::uint64_t w, std::array<double, 2> start, std::array<double, 2> hole,
+             const sim::BallState& state) {
+    if (settled.size() < kSettledCacheSize) {
+      settled.push_back({w, start, hole, state});
+    } else {
+      settled[next_slot] = {w, start, hole, state};
+      next_slot = (next_slot + 1) % kSettledCacheSize;
+    }
+  }
+};
+
+namespace {
+
+constexpr std::size_t kAtRestCacheSize = 4;
+
+// What of a module model the approach depends on: a replaced model at the same address does not
+// hit the cache.
+std::vector<double> approach_fingerprint(const ModuleModel& model) {
+  const auto& c = model.config();
+  std::vector<double> f{static_cast<double>(c.mode), c.core_rate,
+                        static_cast<double>(c.robot_update_divider), c.integral_limit,
+                        static_cast<double>(c.fir_length), c.angle_min, c.angle_max,
+                        c.club_face_offset, c.rest_speed, c.rest_turn_rate, c.rest_tolerance,
+                        c.rest_heading_tolerance, c.stationary_threshold, c.brake_time,
+                        c.velocity_fault_factor, c.perception_max_age, c.ball_tolerance,
+                        model.rest_speed(), model.rest_turn_rate(), model.ik().damping,
+                        model.ik().position_gain, model.ik().orientation_gain,
+                        model.ik().posture_gain, model.ik().limit_margin, model.ik().dt,
+                        model.ik().velocity_scale};
+  for (int j = 0; j < 7; ++j) {
+    const auto i = static_cast<std::size_t>(j);
+    f.insert(f.end(), {c.kp[i], c.ki[i], c.kd[i], model.posture()[j]});
+  }
+  f.insert(f.end(), c.rest_offset.begin(), c.rest_offset.end());
+  const Eigen::Vector3d& x = model.hitting().x_star();
+  f.insert(f.end(), {x.x(), x.y(), x.z()});
+  return f;
+}
+
+}  // namespace
+
+PuttScratch::Impl::AtRest& PuttScratch::Impl::at_rest_slot() {
+  if (at_rest.size() < kAtRestCacheSize) return at_rest.emplace_back();
+  AtRest& e = at_rest[next_at_rest];
+  next_at_rest = (next_at_rest + 1) % kAtRestCacheSize;
+  return e;
+}
+
+PuttScratch::PuttScratch() : impl_(std::make_unique<Impl>()) {}
+PuttScratch::~PuttScratch() = default;
+
+sim::World make_ball_world(const sim::World& arm_world) {
+  sim::WorldOptions o = arm_world.options();
+  o.extra_worldbody_mjcf.clear();
+  o.extra_actuator_mjcf.clear();
+  o.extra_bodies_off_static.clear();
+  o.extra_bodies_off_ball.clear();
+  return sim::World(arm_world.field(), o);
+}
+
+robot::Vector7 rest_joint_positions(const ModuleModel& model, double angle) {
+  robot::FaceTarget target;
+  target.position = rest_face_position(model, angle);
+  target.heading = angle;
+  // The controller's IK with a 20x longer step: the same fixed point (qd = 0 does not depend on
+  // dt), reached in a few hundred iterations instead of thousands.
+  robot::IkOptions ik = model.ik();
+  ik.dt *= 20.0;
+  robot::Vector7 q;
+  for (int j = 0; j < 7; ++j) q[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
+  robot::Vector7 qd;
+  for (int it = 0; it < 3000; ++it) {
+    if (robot::track_face(model.arm(), q, target, model.posture(), ik, qd) ==
+        robot::RtStatus::kInvalidInput)
+      break;
+    q += ik.dt * qd;
+    if (qd.cwiseAbs().maxCoeff() * ik.dt < 1e-14) break;
+  }
+  return q;
+}
+
+namespace {
+
+/// The ball at `start`, at rest in its ground contact: settled in `settle_world` (the ball world,
+/// else `world` with the arm held at the default posture, away from the ball).
+sim::BallState settled_ball(const sim::World& settle_world, mjData* sd,
+                            const robot::ArmModel* arm, std::array<double, 2> start,
+                            std::array<double, 2> hole) {
+  settle_world.reset(sd);
+  settle_world.set_hole(sd, hole);
+  settle_world.place_ball(sd, start);
+  robot::Vector7 rest;
+  for (int j = 0; j < 7; ++j) rest[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
+  const long steps = std::lround(kBallSettleTime / settle_world.model()->opt.timestep);
+  for (long k = 0; k < steps; ++k) {
+    if (arm != nullptr) {
+      robot::set_joint_positions(*arm, sd, rest);
+      for (int j = 0; j < 7; ++j) sd->qvel[arm->dof_address(j)] = 0.0;
+    }
+    settle_world.step(sd);
+  }
+  sim::BallState s = settle_world.ball_state(sd);
+  s.time = 0.0;
+  return s;
+}
+
 }  // namespace
 
 FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
                                 std::array<double, 2> hole, double angle, double speed,
-                                const FullPuttOptions& options) {
+                                const FullPuttOptions& options, PuttScratch* scratch) {
+  const sim::World* ball_world = options.ball_world;
+  if (ball_world != nullptr) check_ball_world(world, *ball_world);
+  std::unique_ptr<PuttScratch> local;
+  if (scratch == nullptr) {
+    local = std::make_unique<PuttScratch>();
+    scratch = local.get();
+  }
+  PuttScratch::Impl& mem = scratch->impl();
+
   world.reset(d);
   world.set_hole(d, hole);
   const std::array<double, 2> ball_start = noisy_ball_start(world, options);
   if (options.placement_noise > 0.0) world.place_ball(d, ball_start);
   robot::Vector7 rest;
   for (int j = 0; j < 7; ++j) rest[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
+  const auto& cfg = model.config();
+  const bool valid_angle = std::isfinite(angle) && angle >= cfg.angle_min && angle <= cfg.angle_max;
+  const bool at_rest_start = options.rest_start == RestStart::kAtRestPose && valid_angle;
+  // Torque noise acts on the arm during the approach too: then it is simulated.
+  const bool kinematic = options.rest_start == RestStart::kKinematicApproach && valid_angle &&
+                         !(options.torque_noise > 0.0);
+  if (at_rest_start || kinematic) {
+    // The ball at rest in its contact, as after the approach; the arm at the rest pose.
+    const sim::World& settle_world = ball_world != nullptr ? *ball_world : world;
+    const sim::BallState* s = mem.find(settle_world.instance_id(), ball_start, hole);
+    if (s == nullptr) {
+      mjData* sd = ball_world != nullptr ? mem.data_for(*ball_world) : d;
+      mem.store(settle_world.instance_id(), ball_start, hole,
+                settled_ball(settle_world, sd, ball_world != nullptr ? nullptr : &model.arm(),
+                             ball_start, hole));
+      s = mem.find(settle_world.instance_id(), ball_start, hole);
+      if (ball_world == nullptr) {  // the settle ran in d
+        world.reset(d);
+        world.set_hole(d, hole);
+      }
+    }
+    world.set_ball_state(d, *s);
+    if (at_rest_start) rest = rest_joint_positions(model, angle);
+  }
   robot::set_joint_positions(model.arm(), d, rest);
   mj_forward(world.model(), d);
 
@@ -177,23 +427,82 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   if (!request_rest(model, run.module(), angle)) {
     r.hit_refused = true;
     r.timing = run.timing();
+    r.arm_steps = run.steps();
     return r;
   }
   const long settle_steps = std::lround(options.settle_timeout / dt);
+  const double min_rest_time = at_rest_start ? kAtRestSettleTime : 0.2;
   bool settled = false;
-  for (long k = 0; k < settle_steps; ++k) {
+  long kinematic_steps = 0;  // steps not simulated here: kinematic approach or restored
+  if (kinematic) {
+    // The module's Rest motion with a plant that follows the reference exactly: its reference
+    // does not depend on the measurement in Rest, so it is that of a simulated approach.
+    const robot::ArmModel& arm = model.arm();
+    while (!settled && run.steps() < settle_steps) {
+      const ModuleData& md = run.module();
+      robot::set_joint_positions(arm, d, md.q_ref);
+      for (int j = 0; j < 7; ++j) d->qvel[arm.dof_address(j)] = md.qd_des[j];
+      const long before = run.steps();
+      run.tick_without_physics();
+      kinematic_steps += run.steps() - before;
+      track_ratios(model, d, run.module(), r);
+      settled = md.state == ModuleState::kRest && md.at_rest_pose && md.time_in_state > 0.2;
+    }
+    const ModuleData& md = run.module();
+    robot::set_joint_positions(arm, d, md.q_ref);
+    for (int j = 0; j < 7; ++j) d->qvel[arm.dof_address(j)] = md.qd_des[j];
+    mj_forward(world.model(), d);
+  }
+  // Approach cache (kApproach, no noise): a hit restores the state at the hit request.
+  const bool cacheable = options.rest_start == RestStart::kApproach && valid_angle &&
+                         !(options.torque_noise > 0.0) && local == nullptr;
+  std::vector<double> fingerprint;
+  PuttScratch::Impl::AtRest* cached = nullptr;
+  if (cacheable) {
+    fingerprint = approach_fingerprint(model);
+    for (auto& e : mem.at_rest)
+      if (e.world == world.instance_id() && e.model == &model && e.angle == angle &&
+          e.settle_timeout == options.settle_timeout && e.start == ball_start && e.hole == hole &&
+          e.fingerprint == fingerprint)
+        cached = &e;
+  }
+  if (cached != nullptr) {
+    mj_copyData(d, world.model(), cached->data.get());
+    run.restore(*cached->module, cached->steps);
+    r = cached->result;
+    kinematic_steps = cached->steps;
+    settled = true;
+  }
+  for (long k = 0; k < settle_steps && !settled; ++k) {
     step();
     track_ratios(model, d, run.module(), r);
     // Ask once the module says the rest pose is reached (on a core-tick boundary).
     if (run.module().state == ModuleState::kRest && run.module().at_rest_pose && k % 2 == 1 &&
-        run.module().time_in_state > 0.2) {
+        run.module().time_in_state > min_rest_time) {
       settled = true;
       break;
     }
   }
   r.rest_time = d->time;
+  if (cacheable && settled && cached == nullptr) {
+    PuttScratch::Impl::AtRest& e = mem.at_rest_slot();
+    if (!e.data || e.world != world.instance_id()) e.data = world.make_data();
+    if (!e.module || e.model != &model) e.module = std::make_unique<ModuleData>(model);
+    e.world = world.instance_id();
+    e.model = &model;
+    e.fingerprint = fingerprint;
+    e.angle = angle;
+    e.settle_timeout = options.settle_timeout;
+    e.start = ball_start;
+    e.hole = hole;
+    mj_copyData(e.data.get(), world.model(), d);
+    *e.module = run.module();
+    e.steps = run.steps();
+    e.result = r;
+  }
   if (!settled) {
     r.timing = run.timing();
+    r.arm_steps = run.steps() - kinematic_steps;
     return r;
   }
 
@@ -250,6 +559,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   }
   if (!contact) {
     r.timing = run.timing();
+    r.arm_steps = run.steps() - kinematic_steps;
     return r;
   }
   r.hit = true;
@@ -262,6 +572,11 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   const long max_steps = std::lround(options.max_duration / dt);
   bool decided = false;
   const double t_contact = d->time;
+  const double ball_radius = world.field().ball.radius;
+  const double club_radius = world.model()->geom_rbound[model.club_geom()];
+  bool may_hand_off = ball_world != nullptr;
+  double came_back_at = -1.0;  // [s] time of the last fallback: no new hand-off until past it
+  const mjData* ball_data = d;  // where the ball's final state is
   long k = 1;
   for (; k <= max_steps && !decided; ++k) {
     step();
@@ -271,10 +586,64 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
       const double* bv = d->qvel + ball_dof;
       r.launch = {std::atan2(bv[1], bv[0]), std::hypot(bv[0], bv[1])};
     }
+    if (decided || !may_hand_off || k < launch_step || r.touching_ball || d->time <= came_back_at)
+      continue;
+    const ModuleData& md = run.module();
+    if (md.state != ModuleState::kBraking && md.state != ModuleState::kIdle) continue;
+    // How far the club can still go: the rest of the braking ramp (bounded by all of it) and
+    // the lift, plus tracking error; idle, it holds still.
+    const double reach = (md.state == ModuleState::kBraking
+                              ? md.v_brake0.norm() * cfg.brake_time + cfg.brake_lift_height
+                              : 0.0) +
+                         kClubReachMargin;
+    const double fallback_radius = reach + club_radius + ball_radius;
+    const Eigen::Vector3d club(d->geom_xpos + 3 * model.club_geom());
+    const Eigen::Vector3d ball(d->qpos + world.ids().ball_qpos);
+    if ((ball - club).norm() < fallback_radius + kHandoffHysteresis) continue;
+
+    // Hand-off: the roll goes on in the ball world; `d` and the tracker stay as they are, to go
+    // on from here should the ball come back towards the club.
+    mjData* bd = mem.data_for(*ball_world);
+    ball_world->reset(bd);
+    ball_world->set_hole(bd, hole);
+    ball_world->set_ball_state(bd, world.ball_state(d));
+    const sim::OutcomeTracker tracker_at_handoff = tracker;
+    const double t_handoff = d->time;
+    const int qb = ball_world->ids().ball_qpos;
+    long kb = k + 1;
+    bool came_back = false;
+    for (; kb <= max_steps && !decided; ++kb) {
+      ball_world->step(bd);
+      decided = tracker.update(bd);
+      const Eigen::Vector3d b(bd->qpos + qb);
+      if (!decided && (b - club).norm() < fallback_radius) {
+        came_back = true;
+        came_back_at = bd->time;
+        break;
+      }
+    }
+    if (!came_back) {
+      r.handed_off = true;
+      r.handoff_time = t_handoff - t_contact;
+      ball_data = bd;
+      k = kb;
+      break;
+    }
+    ++r.handoff_fallbacks;
+    tracker = tracker_at_handoff;
+    decided = false;
+    // Hand off again once past the time the ball came back, when it is clear again.
+    may_hand_off = r.handoff_fallbacks < kMaxHandoffFallbacks;
+  }
+  r.arm_steps = run.steps() - kinematic_steps;
+  if (ball_data != d) {
+    // `d`: the arm as at the hand-off, the ball as at the end.
+    world.set_ball_state(d, ball_world->ball_state(ball_data));
+    mj_forward(world.model(), d);
   }
   r.outcome = tracker.outcome();
   // The ball's time starts at the first contact (ball-only putts start at the launch).
-  r.outcome.duration = d->time - t_contact;
+  r.outcome.duration = ball_data->time - t_contact;
   r.outcome.steps = static_cast<int>(k - 1);
   r.timing = run.timing();
   return r;

@@ -5,6 +5,7 @@
 /// give the same bits (wall-clock timing is measured but never fed back).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "control/minigolf_module.hpp"
@@ -42,6 +43,13 @@ class LockstepRunner {
   /// tick, with the perception at d->time) and the core update. Records the core update's wall
   /// time.
   void step();
+  /// The rest of the current core period without physics: on a core-tick boundary the robot and
+  /// core updates as step() does them; then the clock (d->time) and the step count move on to
+  /// the next tick. For a plant the caller moves itself (kinematic approach).
+  void tick_without_physics();
+  /// Continues from a saved module state and step count (the caller restores `d` to match);
+  /// clears timing.
+  void restore(const ModuleData& data, long steps);
   /// Resets the module to Idle at the current arm state of d and clears timing.
   void reset_module();
   ModuleData& module() { return data_; }
@@ -61,7 +69,34 @@ class LockstepRunner {
   std::vector<float> durations_us_;  // reserved up front; grows only past the reservation
 };
 
+/// How a full-system putt brings the arm to the rest pose of its angle before the hit.
+enum class RestStart {
+  /// From robot::kDefaultRestPosture, the module's Rest motion to the rest pose (0.76-1.65 s
+  /// simulated), as on the real arm. The ball sits on its start meanwhile.
+  kApproach,
+  /// The same approach with a plant that follows the module's reference exactly and is not
+  /// simulated (the module's reference in Rest does not depend on the measurement), the ball
+  /// settled on its start; physics from the hit request on. The arm starts the hit where the
+  /// simulated approach leaves it, up to its tracking error (notes/speed.md). With torque noise
+  /// the approach is simulated (kApproach).
+  kKinematicApproach,
+  /// The arm starts still at the rest pose (the module's IK fixed point for it), the ball settled
+  /// on its start; after kAtRestSettleTime in Rest the hit is asked for. Cheapest, but the arm's
+  /// null-space posture is not the approach's, and with it the club's effective mass at impact:
+  /// launch speeds differ by 2 % typically (notes/speed.md).
+  kAtRestPose,
+};
+
+/// [s] time in Rest before the hit with RestStart::kAtRestPose (10 core ticks).
+inline constexpr double kAtRestSettleTime = 0.02;
+
 struct FullPuttOptions {
+  RestStart rest_start = RestStart::kApproach;
+  /// Not owned, may be shared by threads; must outlive the call. A ball-only world of the same
+  /// field and world options (make_ball_world(world)). When set, the roll continues in it once the
+  /// club is clear of the ball ("hand-off", see full_system_putt); nullptr: the arm is simulated
+  /// to the end.
+  const sim::World* ball_world = nullptr;
   double settle_timeout = 6.0;    ///< [s] to reach the rest pose
   double hit_timeout = 3.0;       ///< [s] from the hit request to contact
   double max_duration = 30.0;     ///< [s] ball roll after the hit
@@ -98,19 +133,75 @@ struct FullPuttResult {
   double max_velocity_ratio = 0.0;  ///< max |qd_j| / limit_j measured
   double max_command_velocity_ratio = 0.0;  ///< max |qd_des_j| / limit_j commanded by the module
   double min_position_margin = 0.0;  ///< [rad] min distance of a joint to its range ends
-  double rest_time = 0.0;           ///< [s] simulated time to reach the rest pose
+  double rest_time = 0.0;  ///< [s] simulated time to reach the rest pose (kAtRestPose: the settle)
   double hit_time = 0.0;            ///< [s] from the hit request to contact
   bool faulted = false;             ///< a fault was observed during the run
   /// Separate club-ball contacts over the run (1: the ball was touched once, as it should be).
   int club_ball_touches = 0;
   bool touching_ball = false;  ///< (bookkeeping of the count: in contact at the last step)
+  /// The roll was finished in options.ball_world from handoff_time on. The arm is not simulated
+  /// after the hand-off (it brakes or idles away from the ball): the limits above, the touches,
+  /// `faulted` and `timing` cover the simulated part only.
+  bool handed_off = false;
+  double handoff_time = 0.0;  ///< [s] after the first contact (0 without a hand-off)
+  /// Ball-only rolls abandoned because the ball came back near where the club was; the arm was
+  /// then simulated on from that hand-off, exactly as without one (at most 3).
+  int handoff_fallbacks = 0;
+  long arm_steps = 0;  ///< physics steps simulated with the arm (rest, hit and roll until hand-off)
 };
 
-/// Resets `d`, sets the hole, puts the arm at the default rest posture, goes to the rest pose for
-/// `angle`, hits at `speed` and simulates until the ball's outcome is decided. Deterministic.
-/// Throws InputError for a bad hole; a refused request is reported in the result.
+/// Caller-owned scratch of full_system_putt, one per thread (not itself thread-safe): the ball
+/// world's mjData, the settled balls of kKinematicApproach / kAtRestPose, and an approach cache
+/// for kApproach without torque noise (the 4 latest states at the hit request, keyed by world,
+/// module model (address and what of it the approach reads), angle, ball start, hole and
+/// settle_timeout; a hit restores the state and skips the simulated approach). It holds memory
+/// and caches only, never state that changes a result: a putt gives the same bits with a fresh
+/// scratch, a used one, or none (nullptr: made locally, no approach cache). With an approach from
+/// the cache, FullPuttResult::timing covers only the core updates run in the call. A scratch must
+/// not outlive the module models it was used with.
+class PuttScratch {
+ public:
+  PuttScratch();
+  ~PuttScratch();
+  PuttScratch(const PuttScratch&) = delete;
+  PuttScratch& operator=(const PuttScratch&) = delete;
+
+  struct Impl;  ///< (full_system.cpp)
+  Impl& impl() { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+/// A ball-only world matching `arm_world` (a world of make_world_with_arm): the same field and
+/// world options, without the arm. For FullPuttOptions::ball_world.
+sim::World make_ball_world(const sim::World& arm_world);
+
+/// The module's IK fixed point [rad] (7) for the rest pose of `angle` [rad]: where its Rest motion
+/// converges (velocity IK iterated from the default posture until it stands still).
+robot::Vector7 rest_joint_positions(const ModuleModel& model, double angle);
+
+/// Resets `d`, sets the hole, brings the arm to the rest pose for `angle` (options.rest_start),
+/// hits at `speed` and simulates until the ball's outcome is decided. Deterministic: the same
+/// inputs (options included) give the same bits, on any thread, with any `scratch`.
+///
+/// Hand-off (options.ball_world set): once the launch is measured, the module is braking or idle
+/// (it never hits again in a putt), the club does not touch the ball and the ball's centre is
+/// farther from the club head's than R + 5 cm, R = the club's remaining reach (braking:
+/// |v_brake0| brake_time + brake_lift_height, a bound on the rest of the ramp; idle: 0) + 5 cm
+/// (tracking, drift) + the head's bounding radius + the ball's radius, the ball's state goes to
+/// options.ball_world and the roll ends there; the arm is no longer simulated (nor its torque
+/// noise). Should the ball come back within R of where the club head was, the ball-only roll is
+/// dropped and the arm simulated on from the hand-off, exactly as without one
+/// (handoff_fallbacks; tried again past that time, once the ball is clear, up to 3 times).
+/// On return `d` holds the arm as at the hand-off and the ball as at the end.
+///
+/// `scratch`: per-thread memory (see PuttScratch); nullptr: made locally. Throws InputError for a
+/// bad hole or a ball world that does not match `world`; a refused request is reported in the
+/// result.
 FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
                                 std::array<double, 2> hole, double angle, double speed,
-                                const FullPuttOptions& options = {});
+                                const FullPuttOptions& options = {},
+                                PuttScratch* scratch = nullptr);
 
 }  // namespace mg::control

@@ -1,9 +1,12 @@
 #include "sim/world.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <mutex>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -62,7 +65,10 @@ void WorldOptions::validate() const {
   require_in_range("world.ground_time_constant", ground_time_constant, 2.0 * timestep, 0.1);
 }
 
-std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
+namespace {
+
+// The world's MJCF; with `pairs` (MJCF <pair> elements) MuJoCo tests only those geom pairs.
+std::string world_mjcf(const field::Field& f, const WorldOptions& o, const std::string& pairs) {
   const auto& b = f.bounds;
   const int ncol = static_cast<int>(std::lround((b[1] - b[0]) / f.cell_size)) + 1;
   const int nrow = static_cast<int>(std::lround((b[3] - b[2]) / f.cell_size)) + 1;
@@ -88,7 +94,7 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
   std::string x;
   x += fmt::format(R"(<mujoco model="minigolf-{}">
   <compiler angle="radian"/>
-  <option timestep="{}" gravity="0 0 {}" cone="{}" impratio="{}"/>
+  <option timestep="{}" gravity="0 0 {}" cone="{}" impratio="{}" collision="{}"/>
   <size nuserdata="{}"/>
   <visual><global offwidth="1280" offheight="720"/></visual>
   <asset>
@@ -104,7 +110,8 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
             solref="{} 1"/>
     </body>
 )",
-                   f.name, o.timestep, -kGravity, "elliptic", 10, kUserSize, nrow, ncol, rx, ry,
+                   f.name, o.timestep, -kGravity, "elliptic", 10, pairs.empty() ? "all" : "predefined",
+                   kUserSize, nrow, ncol, rx, ry,
                    elevation, cx, cy, cx, cy, z_min, heightfield ? kLaneGroup : 0, kNoAffinity,
                    f.sliding_friction, o.ground_time_constant, f.tee[0], f.tee[1],
                    f.height(f.tee[0], f.tee[1]), heightfield ? 0 : kLaneGroup, kNoAffinity,
@@ -124,46 +131,182 @@ std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
       <geom name="ball" type="sphere" size="{}" mass="{}" rgba="1 1 1 1"
             contype="{}" conaffinity="{}" condim="3" priority="0"/>
     </body>
-    <body name="hole_floor" mocap="true" pos="{} {} {}">
-      <geom name="hole_floor" type="cylinder" size="{} 0.005" pos="0 0 -0.005" rgba="0.1 0.1 0.1 1"
-            contype="{}" conaffinity="{}" condim="3" priority="1" friction="0.5 0 0" solref="0.002 1"/>
-    </body>
 )",
                    f.tee[0], f.tee[1], f.height(f.tee[0], f.tee[1]) + f.ball.radius, f.ball.radius,
-                   f.ball.mass, kLaneGroup | kCupGroup, kLaneGroup | kCupGroup | kClubGroup, f.hole.position[0],
-                   f.hole.position[1], z_min - 1.0, hole_r + seg_t, kCupGroup, kNoAffinity);
-  for (int i = 0; i < o.hole_segments; ++i)
-    x += fmt::format(R"(    <body name="hole_wall_{}" mocap="true" pos="0 0 {}">
-      <geom type="box" size="{} {} {}" pos="0 0 {}" rgba="0.1 0.1 0.1 1" contype="{}"
-            conaffinity="{}" condim="3" priority="1" friction="0.3 0 0" solref="0.004 {}"/>
-    </body>
+                   f.ball.mass, kLaneGroup | kCupGroup, kLaneGroup | kCupGroup | kClubGroup);
+  const bool one_body = o.cup == CupBodies::kOne;
+  // The floor's body is the cup's (kOne) or its own (kPerSegment); its top is at the body's z
+  // minus the depth (kOne) or at the body's z (kPerSegment).
+  x += fmt::format(R"(    <body name="hole" mocap="true" pos="{} {} {}">
+      <geom name="hole_floor" type="cylinder" size="{} 0.005" pos="0 0 {}" rgba="0.1 0.1 0.1 1"
+            contype="{}" conaffinity="{}" condim="3" priority="1" friction="0.5 0 0" solref="0.002 1"/>
 )",
-                     i, z_min - 1.0, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, -0.5 * f.hole.depth,
-                     kCupGroup, kNoAffinity, damping_ratio_for_restitution(o.cup_restitution));
+                   f.hole.position[0], f.hole.position[1], z_min - 1.0, hole_r + seg_t,
+                   (one_body ? -f.hole.depth : 0.0) - 0.005, kCupGroup, kNoAffinity);
+  if (!one_body) x += "    </body>\n";
+  for (int i = 0; i < o.hole_segments; ++i) {
+    const double phi = 2.0 * kPi * i / o.hole_segments;
+    const double rc = one_body ? hole_r + 0.5 * seg_t : 0.0;
+    if (!one_body)
+      x += fmt::format(R"(    <body name="hole_wall_{}" mocap="true" pos="0 0 {}">
+)", i, z_min - 1.0);
+    x += fmt::format(R"(      <geom name="hole_wall_{}" type="box" size="{} {} {}" pos="{} {} {}" quat="{} 0 0 {}"
+            rgba="0.1 0.1 0.1 1" contype="{}" conaffinity="{}" condim="3" priority="1"
+            friction="0.3 0 0" solref="0.004 {}"/>
+)",
+                     i, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, rc * std::cos(phi),
+                     rc * std::sin(phi), -0.5 * f.hole.depth, one_body ? std::cos(0.5 * phi) : 1.0,
+                     one_body ? std::sin(0.5 * phi) : 0.0, kCupGroup, kNoAffinity,
+                     damping_ratio_for_restitution(o.cup_restitution));
+    if (!one_body) x += "    </body>\n";
+  }
+  if (one_body) x += "    </body>\n";
   x += o.extra_worldbody_mjcf;
   x += "  </worldbody>\n";
+  // Static geoms (world, ground box, cup) never touch each other (contype only), but MuJoCo would
+  // still test every pair of them each step: 130 pairs, half of all collision work.
+  // Static geoms (world, ground box, cup) never touch each other (contype only), but MuJoCo
+  // would still test every pair of the world's and the mocap bodies' geoms each step (130
+  // pairs, half of all collision work).
+  std::vector<std::string> mocap{"ground_contact", "hole"};
+  if (!one_body)
+    for (int i = 0; i < o.hole_segments; ++i) mocap.push_back(fmt::format("hole_wall_{}", i));
+  x += "  <contact>\n";
+  const auto exclude = [&x](const std::string& a, const std::string& b) {
+    x += fmt::format("    <exclude body1=\"{}\" body2=\"{}\"/>\n", a, b);
+  };
+  for (const auto& body : mocap) exclude("world", body);
+  for (std::size_t i = 1; i < mocap.size(); ++i) exclude("ground_contact", mocap[i]);
+  for (const auto& body : o.extra_bodies_off_static) {
+    exclude("world", body);
+    for (const auto& m : mocap) exclude(m, body);
+  }
+  for (const auto& body : o.extra_bodies_off_ball) exclude("ball", body);
+  x += pairs;
+  x += "  </contact>\n";
   if (!o.extra_actuator_mjcf.empty()) x += "  <actuator>\n" + o.extra_actuator_mjcf + "  </actuator>\n";
   x += "</mujoco>\n";
   return x;
 }
 
-World::World(field::Field field, const WorldOptions& options)
-    : field_(std::move(field)), options_(options) {
-  options_.validate();
-  field_.validate();
-  mjcf_ = build_world_mjcf(field_, options_);
-
+ModelPtr compile_mjcf(const std::string& text) {
   // Compile from memory through MuJoCo's virtual file system.
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
   const char* kName = "world.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(mjcf_.size())) != 0)
+  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(text.size())) != 0)
     throw Error("MuJoCo: cannot create the in-memory model file");
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kName)], mjcf_.data(), mjcf_.size());
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kName)], text.data(), text.size());
   char error[1024] = "";
-  model_.reset(mj_loadXML(kName, vfs.get(), error, sizeof error));
+  ModelPtr model;
+  {
+    // MuJoCo's XML loader keeps the last model in a global (mj_saveLastXML): one at a time.
+    static std::mutex load_mutex;
+    const std::lock_guard<std::mutex> lock(load_mutex);
+    model.reset(mj_loadXML(kName, vfs.get(), error, sizeof error));
+  }
   mj_deleteVFS(vfs.get());
-  if (!model_) throw Error(fmt::format("MuJoCo rejected the generated model: {}", error));
+  if (!model) throw Error(fmt::format("MuJoCo rejected the generated model: {}", error));
+  return model;
+}
+
+// Every geom pair MuJoCo's broadphase could hand to the narrow phase of `m` (contype/conaffinity
+// compatible, different bodies, body pair not excluded), as <pair> elements with the contact
+// parameters MuJoCo 2.2.2 would mix for it (mj_collideGeoms: priority wins, else max/mix), in
+// the order the dynamic path visits them (body-pair signature, then geom ids). Testing only
+// these skips the broadphase, a quarter of a step.
+std::string predefined_pairs(const mjModel* m) {
+  std::string x;
+  const auto excluded = [m](int b1, int b2) {
+    const int signature = ((std::min(b1, b2) + 1) << 16) + std::max(b1, b2) + 1;
+    for (int i = 0; i < m->nexclude; ++i)
+      if (m->exclude_signature[i] == signature) return true;
+    return false;
+  };
+  const auto num = [](const mjtNum* v, int n) {
+    std::string out;
+    for (int i = 0; i < n; ++i) out += fmt::format("{}{:.17g}", i ? " " : "", v[i]);
+    return out;
+  };
+  struct Pair {
+    int b1, b2, g1, g2;
+  };
+  std::vector<Pair> pairs;
+  for (int g1 = 0; g1 < m->ngeom; ++g1)
+    for (int g2 = g1 + 1; g2 < m->ngeom; ++g2) {
+      const int b1 = m->geom_bodyid[g1], b2 = m->geom_bodyid[g2];
+      if (b1 == b2) continue;
+      if (!((m->geom_contype[g1] & m->geom_conaffinity[g2]) ||
+            (m->geom_contype[g2] & m->geom_conaffinity[g1])))
+        continue;
+      if (excluded(b1, b2)) continue;
+      pairs.push_back(b1 < b2 ? Pair{b1, b2, g1, g2} : Pair{b2, b1, g2, g1});
+    }
+  std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+    return a.b1 != b.b1 ? a.b1 < b.b1 : a.b2 < b.b2;
+  });
+  for (const Pair& p : pairs) {
+    const int g1 = p.g1, g2 = p.g2;
+    const char* n1 = mj_id2name(m, mjOBJ_GEOM, g1);
+    const char* n2 = mj_id2name(m, mjOBJ_GEOM, g2);
+    if (n1 == nullptr || n2 == nullptr)
+      throw Error(fmt::format("world: colliding geoms {} and {} need names", g1, g2));
+    int condim;
+    mjtNum friction[5], solref[mjNREF], solimp[mjNIMP];
+    if (m->geom_priority[g1] != m->geom_priority[g2]) {
+      const int gp = m->geom_priority[g1] > m->geom_priority[g2] ? g1 : g2;
+      condim = m->geom_condim[gp];
+      for (int i = 0; i < 3; ++i) friction[2 * i] = m->geom_friction[3 * gp + i];
+      std::copy_n(m->geom_solref + mjNREF * gp, mjNREF, solref);
+      std::copy_n(m->geom_solimp + mjNIMP * gp, mjNIMP, solimp);
+    } else {
+      condim = std::max(m->geom_condim[g1], m->geom_condim[g2]);
+      for (int i = 0; i < 3; ++i)
+        friction[2 * i] = std::max(m->geom_friction[3 * g1 + i], m->geom_friction[3 * g2 + i]);
+      const mjtNum s1 = m->geom_solmix[g1], s2 = m->geom_solmix[g2];
+      const mjtNum mix = s1 >= mjMINVAL && s2 >= mjMINVAL ? s1 / (s1 + s2)
+                         : s1 < mjMINVAL && s2 < mjMINVAL ? 0.5
+                         : s1 < mjMINVAL                  ? 0.0
+                                                          : 1.0;
+      for (int i = 0; i < mjNREF; ++i)
+        solref[i] = m->geom_solref[mjNREF * g1] > 0 && m->geom_solref[mjNREF * g2] > 0
+                        ? mix * m->geom_solref[mjNREF * g1 + i] + (1 - mix) * m->geom_solref[mjNREF * g2 + i]
+                        : std::min(m->geom_solref[mjNREF * g1 + i], m->geom_solref[mjNREF * g2 + i]);
+      for (int i = 0; i < mjNIMP; ++i)
+        solimp[i] = mix * m->geom_solimp[mjNIMP * g1 + i] + (1 - mix) * m->geom_solimp[mjNIMP * g2 + i];
+    }
+    friction[1] = friction[0];
+    friction[3] = friction[4];
+    const mjtNum margin = std::max(m->geom_margin[g1], m->geom_margin[g2]);
+    const mjtNum gap = std::max(m->geom_gap[g1], m->geom_gap[g2]);
+    x += fmt::format(
+        "    <pair geom1=\"{}\" geom2=\"{}\" condim=\"{}\" friction=\"{}\" solref=\"{}\" "
+        "solimp=\"{}\" margin=\"{:.17g}\" gap=\"{:.17g}\"/>\n",
+        n1, n2, condim, num(friction, 5), num(solref, mjNREF), num(solimp, mjNIMP), margin, gap);
+  }
+  return x;
+}
+
+}  // namespace
+
+std::string build_world_mjcf(const field::Field& f, const WorldOptions& o) {
+  return world_mjcf(f, o, "");
+}
+
+World::World(field::Field field, const WorldOptions& options)
+    : field_(std::move(field)), options_(options) {
+  static std::atomic<std::uint64_t> next_instance_id{1};
+  instance_id_ = next_instance_id.fetch_add(1);
+  options_.validate();
+  field_.validate();
+  mjcf_ = build_world_mjcf(field_, options_);
+  model_ = compile_mjcf(mjcf_);
+  if (options_.ground == GroundContact::kTangentPlane) {
+    // The same contacts from predefined pairs only (the hole's ground filter is then done by
+    // update_ground_contact, see there).
+    mjcf_ = world_mjcf(field_, options_, predefined_pairs(model_.get()));
+    model_ = compile_mjcf(mjcf_);
+  }
 
   mjModel* m = model_.get();
   ids_.ball_body = mj_name2id(m, mjOBJ_BODY, "ball");
@@ -176,8 +319,10 @@ World::World(field::Field field, const WorldOptions& options)
   ids_.ground_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "ground_contact")];
   ids_.surface_geom = mj_name2id(m, mjOBJ_GEOM, "lane_surface");
   ids_.hole_floor_geom = mj_name2id(m, mjOBJ_GEOM, "hole_floor");
-  ids_.hole_floor_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_floor")];
-  ids_.first_wall_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_wall_0")];
+  ids_.hole_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole")];
+  ids_.first_wall_geom = mj_name2id(m, mjOBJ_GEOM, "hole_wall_0");
+  if (options_.cup == CupBodies::kPerSegment)
+    ids_.first_wall_mocap = m->body_mocapid[mj_name2id(m, mjOBJ_BODY, "hole_wall_0")];
 
   // Fill the heightfield from the surface function (normalised to [0, 1] of the elevation).
   const int hf = 0;
@@ -193,8 +338,10 @@ World::World(field::Field field, const WorldOptions& options)
       data[r * ncol + c] = static_cast<float>(std::clamp((z - z0) / elevation, 0.0, 1.0));
     }
 
-  // One process-wide filter; it acts only on mjData marked as ours (see userdata layout).
-  mjcb_contactfilter = hole_contact_filter;
+  // One process-wide filter, a pure function of (model, data) that acts only on mjData marked as
+  // ours (see userdata layout). Set once: assigning it while other threads step would be a race.
+  static std::once_flag filter_once;
+  std::call_once(filter_once, [] { mjcb_contactfilter = hole_contact_filter; });
 }
 
 DataPtr World::make_data() const {
@@ -227,10 +374,52 @@ void World::set_hole(mjData* d, std::array<double, 2> p) const {
   d->userdata[kUserHoleX] = p[0];
   d->userdata[kUserHoleY] = p[1];
   d->userdata[kUserHoleRadius] = r;
-  mjtNum* floor = d->mocap_pos + 3 * ids_.hole_floor_mocap;
+  if (options_.cup == CupBodies::kPerSegment) {
+    set_segmented_cup(d, p);
+    return;
+  }
+  // The cup's plane: the tangent plane at the hole, lowered along its normal just enough that no
+  // wall top sticks out of the ground at its chord's centre and ends (the rule of kPerSegment's
+  // vertical walls; zero on a plane).
+  const double inv = 1.0 / std::sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
+  const double n[3] = {-g[0] * inv, -g[1] * inv, inv};
+  const int segments = options_.hole_segments;
+  const double half = r * std::tan(kPi / segments);
+  double drop = 0.0;
+  for (int i = 0; i < segments; ++i) {
+    const double phi = 2.0 * kPi * i / segments;
+    const double ux = std::cos(phi), uy = std::sin(phi);
+    for (double s : {-half, 0.0, half}) {
+      const double x = p[0] + r * ux - s * uy, y = p[1] + r * uy + s * ux;
+      const double plane = zc + g[0] * (x - p[0]) + g[1] * (y - p[1]);
+      drop = std::max(drop, (plane - field_.height(x, y)) * inv);
+    }
+  }
+  mjtNum* pos = d->mocap_pos + 3 * ids_.hole_mocap;
+  pos[0] = p[0] - drop * n[0];
+  pos[1] = p[1] - drop * n[1];
+  pos[2] = zc - drop * n[2];
+  // Rotation taking +z to n, about the horizontal axis z x n (as update_ground_contact).
+  mjtNum* quat = d->mocap_quat + 4 * ids_.hole_mocap;
+  const double s = std::hypot(n[0], n[1]);
+  if (s < 1e-12) {
+    quat[0] = 1.0;
+    quat[1] = quat[2] = quat[3] = 0.0;
+  } else {
+    const double half_angle = 0.5 * std::atan2(s, n[2]);
+    quat[0] = std::cos(half_angle);
+    quat[1] = -n[1] / s * std::sin(half_angle);
+    quat[2] = n[0] / s * std::sin(half_angle);
+    quat[3] = 0.0;
+  }
+}
+
+void World::set_segmented_cup(mjData* d, std::array<double, 2> p) const {
+  const double r = 0.5 * field_.hole.diameter;
+  mjtNum* floor = d->mocap_pos + 3 * ids_.hole_mocap;
   floor[0] = p[0];
   floor[1] = p[1];
-  floor[2] = zc - field_.hole.depth;
+  floor[2] = field_.height(p[0], p[1]) - field_.hole.depth;
   const int n = options_.hole_segments;
   const double seg_t = 0.01;
   for (int i = 0; i < n; ++i) {
@@ -255,6 +444,25 @@ void World::set_hole(mjData* d, std::array<double, 2> p) const {
 
 std::array<double, 2> World::hole_position(const mjData* d) const {
   return {d->userdata[kUserHoleX], d->userdata[kUserHoleY]};
+}
+
+BallState World::ball_state(const mjData* d) const {
+  BallState s;
+  std::copy_n(d->qpos + ids_.ball_qpos, 7, s.qpos.begin());
+  std::copy_n(d->qvel + ids_.ball_dof, 6, s.qvel.begin());
+  std::copy_n(d->qacc_warmstart + ids_.ball_dof, 6, s.qacc_warmstart.begin());
+  s.ground_normal = d->userdata[kUserGroundNormal];
+  s.time = d->time;
+  return s;
+}
+
+void World::set_ball_state(mjData* d, const BallState& s) const {
+  std::copy_n(s.qpos.begin(), 7, d->qpos + ids_.ball_qpos);
+  std::copy_n(s.qvel.begin(), 6, d->qvel + ids_.ball_dof);
+  std::copy_n(s.qacc_warmstart.begin(), 6, d->qacc_warmstart + ids_.ball_dof);
+  d->userdata[kUserGroundNormal] = s.ground_normal;
+  d->time = s.time;
+  update_ground_contact(d);
 }
 
 void World::place_ball(mjData* d, std::array<double, 2> xy) const {
@@ -351,6 +559,12 @@ void World::update_ground_contact(mjData* d) const {
   pos[0] = px;
   pos[1] = py;
   pos[2] = field_.height(px, py);
+  // Over the hole opening there is no ground: the contact filter's rule (the ball's centre
+  // within the hole's radius), applied here because predefined pairs bypass the filter.
+  const double hx = c[0] - d->userdata[kUserHoleX], hy = c[1] - d->userdata[kUserHoleY];
+  const double hr = d->userdata[kUserHoleRadius];
+  if (options_.ground == GroundContact::kTangentPlane && hx * hx + hy * hy < hr * hr)
+    pos[2] -= 10.0;
   // Rotation taking +z to n, about the horizontal axis z x n.
   mjtNum* quat = d->mocap_quat + 4 * ids_.ground_mocap;
   const double s = std::hypot(n[0], n[1]);

@@ -2,9 +2,13 @@
 /// The MuJoCo world of one field: heightfield lane, borders, ball and a movable hole.
 ///
 /// Model/data split: a `World` is immutable after construction (it owns the `mjModel` and the
-/// field); every simulation run owns its own `mjData` (`World::make_data`). The hole is a set of
-/// mocap bodies (cup wall segments and floor), so moving it between putts changes `mjData` only
-/// and never re-parses the model.
+/// field); every simulation run owns its own `mjData` (`World::make_data`). The hole is a mocap
+/// body (cup floor and wall segments; WorldOptions::cup), so moving it between putts changes
+/// `mjData` only and never re-parses the model.
+///
+/// Threads: a `World` may be shared by any number of threads, each stepping its own `mjData`;
+/// worlds may be constructed concurrently. The process-wide `mjcb_contactfilter` is set once,
+/// by the first construction, to a pure function of (model, data).
 ///
 /// Ground contact: MuJoCo 2.2.2's heightfield contacts make a rolling ball drift sideways and
 /// lose speed (measured: 2-9 cm per metre, 5-17 % speed; README "Physics"), so the heightfield
@@ -17,7 +21,9 @@
 /// (a heightfield cannot have a hole), so the ball falls into a geometric cup and lips out or
 /// drops as a real ball does.
 #include <array>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "field/field.hpp"
 #include "sim/mujoco_handles.hpp"
@@ -30,11 +36,23 @@ enum class GroundContact {
   kHeightfield,   ///< MuJoCo's heightfield contacts (kept for comparison; see README)
 };
 
+/// How the cup (floor and wall segments) is made of mocap bodies.
+enum class CupBodies {
+  /// One body: vertical walls on the hole's tangent plane, tilted with it, lowered so that no wall
+  /// top sticks out of the ground (on level ground: kPerSegment's geometry exactly). Collision
+  /// costs half of kPerSegment's (MuJoCo's broadphase sorts every pair of overlapping bodies).
+  kOne,
+  /// A body per wall segment and one for the floor: vertical walls, each top at the lowest
+  /// ground along its chord, the floor level (the cup before notes/speed.md).
+  kPerSegment,
+};
+
 /// Simulation settings shared by every world.
 struct WorldOptions {
   GroundContact ground = GroundContact::kTangentPlane;
   double timestep = 0.001;   ///< [s]; PHYSICS.md: at or under 1 ms for a small fast sphere
   int hole_segments = 24;    ///< cup wall made of this many boxes
+  CupBodies cup = CupBodies::kOne;
   /// Below this rolling speed the resistance torque is scaled down linearly, so a resting ball
   /// does not chatter (a regularised Coulomb law). [rad/s]
   double resistance_smoothing = 0.05;
@@ -51,6 +69,11 @@ struct WorldOptions {
   /// does not depend on robot). Angles in radians. Geoms that should hit the ball use contype 4.
   std::string extra_worldbody_mjcf;
   std::string extra_actuator_mjcf;
+  /// Bodies of extra_worldbody_mjcf that never touch the lane, its borders, the ground box or the
+  /// cup, and those that never touch the ball either: their pairs are excluded from collision
+  /// (MuJoCo 2.2.2 would test them every step; for the arm that was a third of a step).
+  std::vector<std::string> extra_bodies_off_static;
+  std::vector<std::string> extra_bodies_off_ball;
   void validate() const;
 };
 
@@ -63,9 +86,20 @@ struct WorldIds {
   int ground_geom = -1;     ///< what the ball rolls on: the tangent box or the heightfield
   int ground_mocap = -1;
   int surface_geom = -1;    ///< the heightfield (drawn; collides only in kHeightfield mode)
-  int hole_floor_mocap = -1;
+  int hole_mocap = -1;        ///< the cup's body (kOne) or the floor's (kPerSegment)
   int hole_floor_geom = -1;
-  int first_wall_mocap = -1;  ///< cup wall segments are consecutive mocap bodies
+  int first_wall_geom = -1;   ///< cup wall segments are consecutive geoms
+  int first_wall_mocap = -1;  ///< kPerSegment: their consecutive bodies (kOne: -1)
+};
+
+/// The ball's part of a simulation state: enough to continue the ball's motion in another
+/// `mjData` of this world or of another world of the same field (with or without the arm).
+struct BallState {
+  std::array<mjtNum, 7> qpos{};            ///< free joint: centre [m], orientation (w, x, y, z)
+  std::array<mjtNum, 6> qvel{};            ///< [m/s] linear (world); [rad/s] angular (body)
+  std::array<mjtNum, 6> qacc_warmstart{};  ///< the constraint solver's warm start
+  double ground_normal = 0.0;  ///< [N] last solved ground normal force (rolling resistance)
+  double time = 0.0;           ///< [s] simulation time
 };
 
 /// Damping ratio of a spring-damper contact (MuJoCo solref's second number) whose bounce has
@@ -95,6 +129,16 @@ class World {
   /// The hole position currently set in `d`.
   std::array<double, 2> hole_position(const mjData* d) const;
 
+  /// The ball's state in `d`.
+  BallState ball_state(const mjData* d) const;
+  /// Writes `s` into `d` (ball qpos, qvel, warm start, ground normal force, time) and moves the
+  /// ground contact under the ball; other bodies and the hole are left alone. Real-time safe.
+  void set_ball_state(mjData* d, const BallState& s) const;
+
+  /// A number unique to this world in the process (caches keyed by a world use it, not its
+  /// address, which a later world may reuse).
+  std::uint64_t instance_id() const { return instance_id_; }
+
   /// Puts the ball at rest on the surface at `xy` (centre one radius above the ground).
   void place_ball(mjData* d, std::array<double, 2> xy) const;
 
@@ -116,9 +160,12 @@ class World {
  private:
   field::Field field_;
   WorldOptions options_;
+  void set_segmented_cup(mjData* d, std::array<double, 2> position) const;
+
   ModelPtr model_;
   WorldIds ids_;
   std::string mjcf_;
+  std::uint64_t instance_id_ = 0;
 };
 
 /// Builds the MJCF text for a field (exposed for tests).

@@ -48,10 +48,11 @@ TEST(World, MovingTheHoleChangesDataNotModel) {
   EXPECT_EQ(world.model(), model_before);
   EXPECT_EQ(world.model()->nbody, nbody);
   EXPECT_EQ(world.hole_position(d.get())[0], 1.2);
-  const mjtNum* floor = d->mocap_pos + 3 * world.ids().hole_floor_mocap;
+  mj_forward(world.model(), d.get());
+  const mjtNum* floor = d->geom_xpos + 3 * world.ids().hole_floor_geom;
   EXPECT_DOUBLE_EQ(floor[0], 1.2);
   EXPECT_DOUBLE_EQ(floor[1], 0.3);
-  EXPECT_DOUBLE_EQ(floor[2], -world.field().hole.depth);
+  EXPECT_DOUBLE_EQ(floor[2], -world.field().hole.depth - 0.005);  // cylinder centre
 }
 
 TEST(World, HoleOutsideTheLaneOrOnASteepSlopeIsAnError) {
