@@ -40,8 +40,8 @@ System::System(const control::ModuleConfig& config, field::Field field) : config
   config_.validate();
   config_.hitting_model = resolve_data_path(config_.hitting_model).string();
   ds::HittingModel hitting = ds::read_hitting_model(config_.hitting_model);
-  ball_world_ = std::make_unique<sim::World>(field);
   arm_world_ = std::make_unique<sim::World>(control::make_world_with_arm(std::move(field)));
+  ball_world_ = std::make_unique<sim::World>(control::make_ball_world(*arm_world_));
   module_ = std::make_unique<control::ModuleModel>(
       control::make_module_model(*arm_world_, std::move(hitting), config_));
 }
@@ -57,13 +57,17 @@ void System::check_request(double angle, double speed, const std::string& what) 
 }
 
 SystemData::SystemData(const System& system)
-    : arm(system.arm_world().make_data()), ball(system.ball_world().make_data()) {}
+    : arm(system.arm_world().make_data()), ball(system.ball_world().make_data()),
+      scratch(std::make_unique<control::PuttScratch>()) {}
 
 control::FullPuttResult arm_putt(const System& system, SystemData& data, std::array<double, 2> hole,
                                  double angle, double speed, control::FullPuttOptions options) {
   field::check_hole_position(system.field(), hole);
+  // The roll finishes in the ball-only world once the club has left the ball (same outcome,
+  // notes/speed.md); the scratch caches the approach to the rest pose of recent angles.
+  if (options.ball_world == nullptr) options.ball_world = &system.ball_world();
   return control::full_system_putt(system.arm_world(), system.module(), data.arm.get(), hole, angle,
-                                   speed, options);
+                                   speed, options, data.scratch.get());
 }
 
 sim::PuttOutcome ball_putt(const System& system, SystemData& data, std::array<double, 2> hole,

@@ -42,7 +42,7 @@ class System {
   const control::ModuleConfig& config() const { return config_; }
   const field::Field& field() const { return arm_world_->field(); }
   const sim::World& arm_world() const { return *arm_world_; }    ///< field + WAM + club
-  const sim::World& ball_world() const { return *ball_world_; }  ///< field only
+  const sim::World& ball_world() const { return *ball_world_; }  ///< field only (the arm world's options)
   const control::ModuleModel& module() const { return *module_; }
 
   /// Throws InputError naming `what` unless (angle, speed) is inside the module's safe envelope.
@@ -60,6 +60,7 @@ struct SystemData {
   explicit SystemData(const System& system);
   sim::DataPtr arm;   ///< for full-system putts
   sim::DataPtr ball;  ///< for ball-only putts
+  std::unique_ptr<control::PuttScratch> scratch;  ///< hand-off data, approach cache (bit-neutral)
 };
 
 /// The arm hits the ball (lockstep simulator mode) with the hole at `hole`: hitting angle
