@@ -50,6 +50,16 @@ void LockstepRunner::set_perception(perception::Perception* perception) {
   perception_ = perception != nullptr ? perception : &truth_;
 }
 
+void physics_step(const sim::World& world, const ModuleModel& model, mjData* d) {
+  const mjtNum* club = d->geom_xpos + 3 * model.club_geom();
+  const mjtNum* ball = d->geom_xpos + 3 * model.ball_geom();
+  const double dx = club[0] - ball[0], dy = club[1] - ball[1], dz = club[2] - ball[2];
+  if (dx * dx + dy * dy + dz * dz < kImpactZone * kImpactZone)
+    world.step_fine(d);
+  else
+    world.step(d);
+}
+
 void LockstepRunner::step() {
   if (steps_ % steps_per_tick_ == 0) {
     if (data_.tick % model_->config().robot_update_divider == 0)
@@ -60,7 +70,7 @@ void LockstepRunner::step() {
     durations_us_.push_back(
         static_cast<float>(std::chrono::duration<double, std::micro>(t1 - t0).count()));
   }
-  world_->step(d_);
+  physics_step(*world_, *model_, d_);
   ++steps_;
 }
 

@@ -22,6 +22,14 @@ sim::World make_world_with_arm(field::Field field, const robot::WamMount& mount 
 ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
                               const ModuleConfig& config, const robot::WamMount& mount = {});
 
+/// [m] Within this distance of the ball centre, the club head's centre is "at the impact": the
+/// physics steps in kImpactSubsteps finer steps (sim::World::step_fine) so the launch does not
+/// depend on where in a 1 ms step the club first touches the ball.
+constexpr double kImpactZone = 0.06;
+/// One physics step of a world with the arm: fine near the impact, else the plain step.
+/// Real-time safe. Used by every scheduler (LockstepRunner, the console session).
+void physics_step(const sim::World& world, const ModuleModel& model, mjData* d);
+
 /// Wall-clock timing of the core updates of a run.
 struct CoreTiming {
   double core_update_p99_us = 0.0;

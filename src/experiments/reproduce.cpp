@@ -146,7 +146,7 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
     const field::Field fl = field::load_field(name);
     const bool split = static_cast<int>(fl.situations.collection_points().size()) >= kSplitMinPoints;
     if (opt.collect) continue;
-    for (const fs::path p : {datasets / (name + ".csv"), datasets / (name + "-validation.csv")}) {
+    for (const fs::path& p : {datasets / (name + ".csv"), datasets / (name + "-validation.csv")}) {
       if (split && p.filename().string().ends_with("-validation.csv")) continue;
       if (!fs::is_regular_file(p, ec))
         throw InputError(fmt::format("reproduce: data set {} is missing (run with --collect, or "

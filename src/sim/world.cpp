@@ -342,6 +342,8 @@ World::World(field::Field field, const WorldOptions& options)
   // ours (see userdata layout). Set once: assigning it while other threads step would be a race.
   static std::once_flag filter_once;
   std::call_once(filter_once, [] { mjcb_contactfilter = hole_contact_filter; });
+  fine_model_.reset(mj_copyModel(nullptr, model_.get()));
+  fine_model_->opt.timestep = model_->opt.timestep / kImpactSubsteps;
 }
 
 DataPtr World::make_data() const {
@@ -488,8 +490,13 @@ double World::ground_normal_force(const mjData* d) const {
   return normal;
 }
 
-void World::step(mjData* d) const {
-  const mjModel* m = model_.get();
+void World::step(mjData* d) const { step_with(model_.get(), d); }
+
+void World::step_fine(mjData* d) const {
+  for (int k = 0; k < kImpactSubsteps; ++k) step_with(fine_model_.get(), d);
+}
+
+void World::step_with(const mjModel* m, mjData* d) const {
   update_ground_contact(d);
   // Split step: collisions for the current state first, so the rolling-resistance torque acts
   // only while the ball touches the ground now (a torque from the last contact force applied

@@ -146,6 +146,12 @@ class World {
   /// force of the last solve), `mj_step2`.
   /// Real-time safe: no allocation, no exceptions.
   void step(mjData* d) const;
+  /// The same time (one timestep) in kImpactSubsteps steps of a copy of the model with a
+  /// timestep that much shorter. For the club-ball impact: the 8 ms contact resolved at 1 ms made
+  /// the launch speed depend on the phase of the step at first touch (launch / club speed
+  /// scattered with a std of 0.034 over club speeds 0.01 m/s apart; 0.012 at 0.5 ms).
+  void step_fine(mjData* d) const;
+  static constexpr int kImpactSubsteps = 4;
 
   /// Total normal force of ground contacts on the ball in the current `mjData` [N].
   double ground_normal_force(const mjData* d) const;
@@ -162,7 +168,10 @@ class World {
   WorldOptions options_;
   void set_segmented_cup(mjData* d, std::array<double, 2> position) const;
 
+  void step_with(const mjModel* m, mjData* d) const;
+
   ModelPtr model_;
+  ModelPtr fine_model_;  ///< model_ with timestep / kImpactSubsteps (step_fine)
   WorldIds ids_;
   std::string mjcf_;
   std::uint64_t instance_id_ = 0;

@@ -208,7 +208,7 @@ void Session::tick_locked(bool lockstep) {
     push_event_locked(e);
   }
   for (int s = 0; s < steps_per_tick_; ++s) {
-    world_.step(d);
+    physics_step(world_, *model_, d);
     if (tracker_ && tracker_->update(d)) {
       const sim::PuttOutcome o = tracker_->outcome();
       const auto hole = world_.hole_position(d);
