@@ -184,6 +184,34 @@ TEST(Reproduce, ArctanSplitKeepsTheCornersInTraining) {
   EXPECT_NE(arctan_validation_split(7, 4, 9, 1), arctan_validation_split(7, 4, 9, 2));
 }
 
+// The whole chain on one field: the same CSVs (data, models, predictions, evaluations, curves,
+// sweeps) with 1 and 2 threads.
+TEST(Reproduce, SameCsvFilesWithOneAndTwoThreads) {
+  ReproduceOptions o;
+  o.quick = true;
+  o.fields = {"flat"};
+  o.plots = false;
+  o.threads = 1;
+  o.out = temp("repro1");
+  reproduce(o, [](const std::string&) {});
+  o.threads = 2;
+  o.out = temp("repro2");
+  reproduce(o, [](const std::string&) {});
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(temp("repro1") / "csv")) {
+    const auto other = temp("repro2") / "csv" / entry.path().filename();
+    ASSERT_TRUE(fs::exists(other)) << other;
+    EXPECT_EQ(slurp(entry.path()), slurp(other)) << entry.path().filename();
+    ++files;
+  }
+  EXPECT_GT(files, 10);
+  const std::string report = slurp(temp("repro1") / "report.md");
+  EXPECT_NE(report.find("| flat | gpr | 30 |"), std::string::npos) << report;
+  EXPECT_NE(report.find("thesis"), std::string::npos);
+  fs::remove_all(temp("repro1"));
+  fs::remove_all(temp("repro2"));
+}
+
 TEST(Reproduce, FailsClearlyOnAMissingDataSet) {
   ReproduceOptions o;
   o.out = temp("repro");
