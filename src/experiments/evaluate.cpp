@@ -16,7 +16,8 @@ std::array<double, 2> wilson_interval(int k, int n, double z) {
   const double p = static_cast<double>(k) / n, z2 = z * z;
   const double centre = (p + z2 / (2.0 * n)) / (1.0 + z2 / n);
   const double half = z / (1.0 + z2 / n) * std::sqrt(p * (1.0 - p) / n + z2 / (4.0 * n * n));
-  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+  // At k = 0 or k = n one end is 0 or 1 exactly (rounding would leave 1 - 1e-16).
+  return {k == 0 ? 0.0 : std::max(0.0, centre - half), k == n ? 1.0 : std::min(1.0, centre + half)};
 }
 
 namespace {
