@@ -169,6 +169,10 @@ void add_collect(CLI::App& app) {
     bar.finish();
     int found = 0;
     for (const auto& e : r.examples) found += e.found;
+    if (found == 0)
+      throw InputError(fmt::format("collect: no sinking putt in any of the {} situations on {}: the region is "
+                                   "unplayable (the attempts are recorded in {})",
+                                   r.examples.size(), sys.field().name, a->out));
     fmt::print("collected {} of {} situations on {} ({}{}; {} resumed, {} replaced by the continuity pass): {} "
                "full-system and {} ball-only putts; written to {}\n",
                found, r.examples.size(), sys.field().name, teacher::to_string(o.teacher.strategy),

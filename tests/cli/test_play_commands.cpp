@@ -86,9 +86,17 @@ TEST(PlayCommands, BadInputsGetOneLineAndExitTwo) {
   expect_one_line_error("train " + data.string() + " -o " + model.string(), "finite");
   expect_one_line_error("reproduce --quick --fields flat --datasets /nonexistent -o " + temp("r").string(), "missing");
   expect_one_line_error("collect --field nowhere -o " + out.string(), "unknown field");
+  {  // found only after trying: progress lines first, then the one error line
+    const auto r = run_minigolf("collect --field flat --situations line:2.64,-0.1:2.64,0.1:2 --max-full-putts 6 -o " +
+                                out.string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("minigolf: error: collect: no sinking putt in any of the 2 situations"), std::string::npos) << r.err;
+    EXPECT_NE(slurp(out).find("# unplayable: index=1"), std::string::npos);  // the attempts are kept
+  }
   fs::remove(data);
   fs::remove(model);
   fs::remove_all(temp("r"));
+  fs::remove(out);
 }
 
 }  // namespace
