@@ -148,6 +148,12 @@ std::vector<Demonstration> demonstrations_from_table(const CsvTable& table, std:
       demos.back().id = id;
     }
     Demonstration& d = demos.back();
+    // Positions [m], velocities [m/s] and times [s] of an arm: beyond 1e6 the file is broken (and
+    // squares of 1e154 and more overflow in the fit).
+    for (std::size_t c = 1; c < names.size(); ++c)
+      if (std::abs(row[col[c]]) > 1e6)
+        throw InputError(fmt::format("{}: row {}: column '{}': {:g} is beyond +-1e6", table.source, r + 1,
+                                     names[c], row[col[c]]));
     const double t = row[col[1]];
     if (!d.t.empty() && !(t > d.t.back()))
       throw InputError(fmt::format("{}: row {}: demonstration {}: expected strictly increasing time, got {} after {}", table.source, r + 1, id, t, d.t.back()));

@@ -58,6 +58,16 @@ Dataset dataset_from_table(const CsvTable& table, const std::vector<std::string>
   d.output_names = output_names;
   d.inputs = pick_columns(table, input_names);
   d.outputs = pick_columns(table, output_names);
+  // Situations and hitting parameters are metres, radians and m/s: a value beyond 1e100 is a
+  // broken file, and squaring it (variances, distances) would overflow to inf.
+  for (const auto* m : {&d.inputs, &d.outputs})
+    for (Eigen::Index i = 0; i < m->rows(); ++i)
+      for (Eigen::Index j = 0; j < m->cols(); ++j)
+        if (std::abs((*m)(i, j)) > kMaxDatasetValue)
+          throw InputError(fmt::format("{}: row {}, column '{}': {:g} is beyond +-{:g}", table.source, i + 1,
+                                       m == &d.inputs ? input_names[static_cast<std::size_t>(j)]
+                                                      : output_names[static_cast<std::size_t>(j)],
+                                       (*m)(i, j), kMaxDatasetValue));
   if (d.size() < min_rows)
     throw InputError(fmt::format("{}: expected at least {} data rows, got {}", table.source, min_rows, d.size()));
   return d;

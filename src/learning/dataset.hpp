@@ -30,6 +30,9 @@ std::vector<std::pair<std::string, double>> constant_columns(const CsvTable& tab
                                                              const std::vector<std::string>& candidates,
                                                              const std::vector<std::string>& used);
 
+/// Largest magnitude a data set value may have (larger ones are an InputError).
+inline constexpr double kMaxDatasetValue = 1e100;
+
 /// Picks the named columns of a parsed CSV table. Throws `mg::InputError` naming the source when a
 /// column is missing, a name is used twice, or there are fewer than `min_rows` rows.
 Dataset dataset_from_table(const CsvTable& table, const std::vector<std::string>& input_names,

@@ -190,6 +190,11 @@ KMeansResult kmeans(const Eigen::MatrixXd& data, int num_clusters, mg::Rng& rng,
     KMeansResult res = lloyd(data, kmeans_pp_seed(data, num_clusters, rng), std::max(1, max_iterations));
     if (res.inertia < best.inertia) best = std::move(res);
   }
+  // Every restart non-finite (data near the double range: squared distances overflow): no
+  // clustering to return, and an empty one would be read out of bounds by the caller.
+  if (best.labels.empty())
+    throw mg::NumericalError(fmt::format("k-means: every squared distance overflowed (|values| up to {:g}); "
+                                         "rescale the data", data.cwiseAbs().maxCoeff()));
   return best;
 }
 

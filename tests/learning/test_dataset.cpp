@@ -48,5 +48,17 @@ TEST(LearningDataset, ColumnsAreChosenByName) {
   EXPECT_EQ(q(1, 0), 6.0);
 }
 
+// Found by fuzzing (issue 13): a value of 1e200 crashed GMR training (squared distances overflow).
+TEST(LearningDataset, HugeValuesAreAClearErrorNamingTheFile) {
+  const CsvTable t = parse_csv("xi_x,angle\n1e200,0\n2,0.1\n", "s.csv");
+  try {
+    dataset_from_table(t, {"xi_x"}, {"angle"});
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("s.csv: row 1, column 'xi_x'"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(dataset_from_table(parse_csv("xi_x,angle\n1e90,0\n2,0.1\n", "ok.csv"), {"xi_x"}, {"angle"}));
+}
+
 }  // namespace
 }  // namespace mg::learning

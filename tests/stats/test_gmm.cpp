@@ -153,5 +153,15 @@ TEST(StatsGmm, ValidateNamesTheProblem) {
   EXPECT_THROW(wrong_dim.validate(), InputError);
 }
 
+// Every k-means restart with a non-finite inertia used to return an empty clustering that EM read
+// out of bounds (SIGSEGV); now it is a NumericalError.
+TEST(StatsGmm, OverflowingDataIsAnErrorNotACrash) {
+  Eigen::MatrixXd data(3, 1);
+  data << 1e200, 2.0, -1e200;
+  mg::Rng rng(1);
+  EXPECT_THROW(kmeans(data, 1, rng), mg::NumericalError);
+  EXPECT_THROW(fit_gmm(data, 1, rng), mg::Error);
+}
+
 }  // namespace
 }  // namespace mg::stats
