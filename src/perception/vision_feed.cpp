@@ -14,6 +14,9 @@ void VisionFeedConfig::validate() const {
   if (!(std::isfinite(max_age) && max_age > 0.0))
     throw InputError(
         fmt::format("vision feed max_age: expected a finite number > 0 s, got {}", max_age));
+  if (!(std::isfinite(seq_reset_after) && seq_reset_after > max_age))
+    throw InputError(fmt::format("vision feed seq_reset_after: expected a finite number > max_age ({} s), got {}",
+                                 max_age, seq_reset_after));
   if (max_datagrams_per_poll < 1)
     throw InputError(fmt::format("vision feed max_datagrams_per_poll: expected >= 1, got {}",
                                  max_datagrams_per_poll));
@@ -77,7 +80,9 @@ FeedVerdict VisionFeed::offer(std::string_view datagram, double now) noexcept {
       ++counters_.malformed;
       return FeedVerdict::kMalformed;
   }
-  if (latest_ && p.message.seq <= latest_->seq) {
+  // A lower seq after a silence is a restarted sender; a repeat of the last seq never refreshes.
+  const bool restart = now - latest_received_ >= config_.seq_reset_after;
+  if (latest_ && (p.message.seq == latest_->seq || (p.message.seq < latest_->seq && !restart))) {
     ++counters_.reordered;
     return FeedVerdict::kReordered;
   }

@@ -30,6 +30,10 @@ struct VisionFeedConfig {
   /// At most this many datagrams are read per `poll`, so a flooding sender cannot stall the
   /// control loop; the rest wait for the next poll.
   int max_datagrams_per_poll = 1024;
+  /// [s] A `seq` below the last accepted one is taken (a restarted sender) once nothing was
+  /// accepted for this long, so no sender can blind the feed for good (a repeat of the last `seq`
+  /// is always rejected).
+  double seq_reset_after = 1.0;
   /// Throws `InputError` naming the field.
   void validate() const;
 };

@@ -60,6 +60,10 @@ VisionParse parse_vision_message(std::string_view datagram, const VisionLimits& 
     return r;
   }
   r.message.seq = seq->get<std::uint64_t>();
+  if (r.message.seq > kMaxVisionSeq) {  // a sender must not be able to outrun every later seq
+    r.error = VisionError::kOutOfRange;
+    return r;
+  }
   r.message.stamp = stamp->get<double>();
   if (!std::isfinite(r.message.stamp)) {
     r.error = VisionError::kNotFinite;

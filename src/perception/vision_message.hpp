@@ -17,8 +17,12 @@
 
 namespace mg::perception {
 
+/// Largest accepted `seq` (2^53: exact in every JSON implementation's doubles). A larger one is
+/// out of range: one datagram with seq 2^64-1 would otherwise make every later one "reordered".
+inline constexpr std::uint64_t kMaxVisionSeq = 9007199254740992ULL;
+
 struct VisionMessage {
-  std::uint64_t seq = 0;
+  std::uint64_t seq = 0;  ///< 0..kMaxVisionSeq
   double stamp = 0.0;                  ///< [s] sender clock
   std::array<double, 3> ball{0, 0, 0};  ///< [m] world frame
   std::array<double, 3> hole{0, 0, 0};  ///< [m] world frame

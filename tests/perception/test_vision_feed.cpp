@@ -47,6 +47,23 @@ TEST(VisionFeed, RulesPerDatagram) {
   EXPECT_DOUBLE_EQ(feed.age(1.25), 0.15);
 }
 
+// Found by fuzzing (issue 13): one datagram with seq 2^64-1 made every later one "reordered".
+TEST(VisionFeed, NoSenderCanBlindTheFeed) {
+  VisionFeed feed(UdpReceiver("127.0.0.1", 0));
+  for (const char* huge : {"18446744073709551615", "9223372036854775808", "9007199254740993"}) {
+    const std::string d = std::string(R"({"format":"minigolf-vision/1","seq":)") + huge +
+                          R"(,"stamp":0,"ball":[0,0,0.02],"hole":[2,0,0]})";
+    EXPECT_EQ(feed.offer(d, 1.0), FeedVerdict::kOutOfRange) << huge;
+  }
+  // The largest accepted seq, then a sender restarting from 1: rejected while the feed is fresh,
+  // taken once nothing was accepted for seq_reset_after (1 s).
+  EXPECT_EQ(feed.offer(format_vision_message(good(kMaxVisionSeq)), 2.0), FeedVerdict::kAccepted);
+  EXPECT_EQ(feed.offer(format_vision_message(good(1)), 2.5), FeedVerdict::kReordered);
+  EXPECT_EQ(feed.offer(format_vision_message(good(2)), 3.1), FeedVerdict::kAccepted);
+  EXPECT_EQ(feed.offer(format_vision_message(good(3)), 3.2), FeedVerdict::kAccepted);
+  EXPECT_EQ(feed.offer(format_vision_message(good(2)), 3.3), FeedVerdict::kReordered);
+}
+
 TEST(VisionFeed, FreshnessByReceiveTime) {
   VisionFeedConfig config;
   config.max_age = 0.25;  // binary-exact, so the boundary below is exact too
