@@ -1,6 +1,10 @@
 #include "core/io.hpp"
 
+#include <atomic>
 #include <charconv>
+#include <csignal>
+#include <cstring>
+#include <mutex>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -27,9 +31,85 @@ std::string read_text_file(const std::filesystem::path& path) {
   return buffer.str();
 }
 
+namespace {
+
+// Temporary files of writes in progress, removed by the handler of SIGINT / SIGTERM / SIGHUP so a
+// killed write leaves nothing behind (unlink is async-signal-safe; the slots are plain buffers).
+constexpr int kTempSlots = 32;
+constexpr std::size_t kTempPathMax = 4096;
+struct TempSlot {
+  std::atomic<bool> used{false};
+  char path[kTempPathMax] = {};
+};
+TempSlot g_temp_slots[kTempSlots];
+
+extern "C" void remove_temp_files_and_die(int sig) {
+  for (auto& slot : g_temp_slots)
+    if (slot.used.load()) ::unlink(slot.path);
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+/// Registers `tmp` for removal on a signal; returns the slot (-1: none free or too long).
+int register_temp(const std::filesystem::path& tmp) {
+  static std::once_flag handlers;
+  std::call_once(handlers, [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction old {};
+      ::sigaction(sig, nullptr, &old);
+      if (old.sa_handler != SIG_DFL) continue;  // somebody else handles it
+      struct sigaction sa {};
+      sa.sa_handler = remove_temp_files_and_die;
+      sigemptyset(&sa.sa_mask);
+      ::sigaction(sig, &sa, nullptr);
+    }
+  });
+  const std::string& text = tmp.native();
+  if (text.size() + 1 > kTempPathMax) return -1;
+  for (int i = 0; i < kTempSlots; ++i) {
+    bool expected = false;
+    if (g_temp_slots[i].used.compare_exchange_strong(expected, true)) {
+      std::memcpy(g_temp_slots[i].path, text.c_str(), text.size() + 1);
+      return i;
+    }
+  }
+  return -1;
+}
+
+void unregister_temp(int slot) {
+  if (slot >= 0) g_temp_slots[slot].used.store(false);
+}
+
+std::string file_kind(std::filesystem::file_type t) {
+  using std::filesystem::file_type;
+  switch (t) {
+    case file_type::directory: return "a directory";
+    case file_type::symlink: return "a symbolic link";
+    case file_type::fifo: return "a FIFO";
+    case file_type::socket: return "a socket";
+    case file_type::block:
+    case file_type::character: return "a device";
+    default: return "not a regular file";
+  }
+}
+
+}  // namespace
+
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
+  // Never replace what is not a regular file (a FIFO, a device, a link): refuse it.
+  std::error_code st_ec;
+  const auto st = std::filesystem::symlink_status(path, st_ec);
+  if (!st_ec && std::filesystem::exists(st) && st.type() != std::filesystem::file_type::regular)
+    throw IoError(fmt::format("{}: is {}; refusing to replace it (write to a regular file)", path.string(),
+                              file_kind(st.type())));
+  static std::atomic<unsigned> counter{0};
   const std::filesystem::path tmp =
-      path.string() + fmt::format(".{}.tmp", static_cast<long>(::getpid()));
+      path.string() + fmt::format(".{}.{}.tmp", static_cast<long>(::getpid()), counter++);
+  const int slot = register_temp(tmp);
+  struct Unregister {
+    int slot;
+    ~Unregister() { unregister_temp(slot); }
+  } unregister{slot};
   {
     std::FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw IoError(fmt::format("{}: cannot open for writing", path.string()));

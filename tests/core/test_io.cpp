@@ -4,6 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "core/error.hpp"
 
 namespace mg {
@@ -20,6 +25,55 @@ TEST(Io, AtomicWriteReplacesAndReadsBack) {
 TEST(Io, MissingFileIsIoError) {
   EXPECT_THROW(read_text_file("/nonexistent/dir/file.txt"), IoError);
   EXPECT_THROW(write_file_atomic("/nonexistent/dir/file.txt", "x"), IoError);
+}
+
+// Found by fuzzing (issue 13): the atomic writer replaced FIFOs, links and device nodes.
+TEST(Io, AtomicWriteNeverReplacesWhatIsNotARegularFile) {
+  const auto dir = std::filesystem::temp_directory_path() / ("mg_io_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto fifo = dir / "fifo", link = dir / "link", target = dir / "target";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  write_file_atomic(target, "kept\n");
+  std::filesystem::create_symlink(target, link);
+  EXPECT_THROW(write_file_atomic(fifo, "x"), IoError);
+  EXPECT_THROW(write_file_atomic(link, "x"), IoError);
+  EXPECT_THROW(write_file_atomic(dir, "x"), IoError);
+  EXPECT_TRUE(std::filesystem::is_fifo(std::filesystem::symlink_status(fifo)));
+  EXPECT_TRUE(std::filesystem::is_symlink(std::filesystem::symlink_status(link)));
+  EXPECT_EQ(read_text_file(target), "kept\n");
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
+  std::filesystem::remove_all(dir);
+}
+
+// A write killed by SIGTERM leaves no temporary file (the handler removes it).
+TEST(Io, AKilledWriteLeavesNoTemporaryFile) {
+  const auto dir = std::filesystem::temp_directory_path() / ("mg_io_kill_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::string big(std::size_t{1} << 29, 'x');  // 512 MiB: long enough to be killed while writing
+    write_file_atomic(dir / "big.csv", big);
+    ::_exit(0);
+  }
+  bool seen = false;
+  for (int i = 0; i < 400 && !seen; ++i) {
+    for (const auto& e : std::filesystem::directory_iterator(dir)) seen = seen || e.path().extension() == ".tmp";
+    if (!seen) ::usleep(10000);
+  }
+  ::kill(child, SIGTERM);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_TRUE(seen) << "the write finished before it could be killed";
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM);
+  int left = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir)) {
+    ++left;
+    ADD_FAILURE() << "left behind: " << e.path();
+  }
+  EXPECT_EQ(left, 0);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
