@@ -208,7 +208,13 @@ void Session::tick_locked(bool lockstep) {
     push_event_locked(e);
   }
   for (int s = 0; s < steps_per_tick_; ++s) {
-    physics_step(world_, *model_, d);
+    // Lockstep: the fine impact steps, as every full-system putt. Real time: plain 1 ms steps — the
+    // simulator stands in for the arm inside the 2 ms tick, and 8 fine steps near the ball took
+    // the tick past its deadline (1.5 % misses measured, against < 1 % allowed).
+    if (lockstep)
+      physics_step(world_, *model_, d);
+    else
+      world_.step(d);
     if (tracker_ && tracker_->update(d)) {
       const sim::PuttOutcome o = tracker_->outcome();
       const auto hole = world_.hole_position(d);
