@@ -27,7 +27,8 @@ ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
 /// depend on where in a 1 ms step the club first touches the ball.
 constexpr double kImpactZone = 0.06;
 /// One physics step of a world with the arm: fine near the impact, else the plain step.
-/// Real-time safe. Used by every scheduler (LockstepRunner, the console session).
+/// Real-time safe. Used by the lockstep schedulers (LockstepRunner, the lockstep console); the
+/// real-time console steps plainly to keep its 2 ms deadlines.
 void physics_step(const sim::World& world, const ModuleModel& model, mjData* d);
 
 /// Wall-clock timing of the core updates of a run.
