@@ -60,7 +60,7 @@ void physics_step(const sim::World& world, const ModuleModel& model, mjData* d) 
     world.step(d);
 }
 
-void LockstepRunner::step() {
+void LockstepRunner::module_tick_if_due() {
   if (steps_ % steps_per_tick_ == 0) {
     if (data_.tick % model_->config().robot_update_divider == 0)
       robot_update(*model_, data_, perception_->perceive(d_->time));
@@ -70,6 +70,10 @@ void LockstepRunner::step() {
     durations_us_.push_back(
         static_cast<float>(std::chrono::duration<double, std::micro>(t1 - t0).count()));
   }
+}
+
+void LockstepRunner::step() {
+  module_tick_if_due();
   physics_step(*world_, *model_, d_);
   ++steps_;
 }
@@ -81,15 +85,7 @@ void LockstepRunner::restore(const ModuleData& data, long steps) {
 }
 
 void LockstepRunner::tick_without_physics() {
-  if (steps_ % steps_per_tick_ == 0) {
-    if (data_.tick % model_->config().robot_update_divider == 0)
-      robot_update(*model_, data_, perception_->perceive(d_->time));
-    const auto t0 = std::chrono::steady_clock::now();
-    core_update(*model_, data_, d_);
-    const auto t1 = std::chrono::steady_clock::now();
-    durations_us_.push_back(
-        static_cast<float>(std::chrono::duration<double, std::micro>(t1 - t0).count()));
-  }
+  module_tick_if_due();
   const long n = steps_per_tick_ - steps_ % steps_per_tick_;
   d_->time += static_cast<double>(n) * world_->model()->opt.timestep;
   steps_ += n;

@@ -67,6 +67,10 @@ class LockstepRunner {
   CoreTiming timing() const;
 
  private:
+  /// On a core-tick boundary: the robot update (every robot_update_divider-th tick) and the timed
+  /// core update.
+  void module_tick_if_due();
+
   const sim::World* world_;
   const ModuleModel* model_;
   mjData* d_;
