@@ -58,12 +58,6 @@ std::vector<double> parse_range(const std::string& what, const std::string& text
   return experiments::linspace(lo, hi, static_cast<int>(n));
 }
 
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 /// Runs scripts/plots/plot.py with `args` (already quoted); throws on failure.
 void run_plot(const std::string& args) {
   const std::filesystem::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";

@@ -51,12 +51,6 @@ nlohmann::json summary_json(const experiments::LaunchStudyResult& r) {
           {"seed", o.seed},       {"angles", angles}};
 }
 
-std::string shell_quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 }  // namespace
 
 void add_study_commands(CLI::App& app) {

@@ -17,6 +17,9 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
 /// if set, else the source tree's `data/` recorded at build time.
 std::filesystem::path data_dir();
 
+/// `s` as one single-quoted POSIX shell word (for commands run through std::system).
+std::string shell_quote(const std::string& s);
+
 /// Formats a double so that parsing it back gives the same bits (shortest round-trip form).
 std::string format_exact(double value);
 

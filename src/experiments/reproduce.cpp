@@ -33,12 +33,6 @@ constexpr double kDeg = 180.0 / 3.14159265358979323846;
 constexpr int kSplitMinPoints = 24;
 constexpr int kValidationSituations = 10;
 
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
 std::string fmt_pct(double r) { return std::isfinite(r) ? fmt::format("{:.0f} %", 100.0 * r) : "-"; }
 
 /// The thesis's chapter-6 values (data/reference/thesis-results.yaml), for the "thesis" columns.
@@ -170,7 +164,7 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
   const auto plot = [&](const std::string& args) {
     if (!opt.plots) return;
     const fs::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";
-    const std::string cmd = "/usr/bin/python3 " + quote(script.string()) + " " + args + " 1>&2";
+    const std::string cmd = "/usr/bin/python3 " + shell_quote(script.string()) + " " + args + " 1>&2";
     if (std::system(cmd.c_str()) != 0) throw Error(fmt::format("reproduce: plotting failed: {}", args));
   };
   const auto csv_path = [&](const std::string& name) { return (opt.out / "csv" / name).string(); };
@@ -395,9 +389,9 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
       }
       write_file_atomic(csv_path(name + "_learning_curve.csv"), curve);
       say(fmt::format("{}: learning curves done", name));
-      plot(fmt::format("learning-curve {} {} --title {}", quote(csv_path(name + "_learning_curve.csv")),
-                       quote(fig_path(name + "_learning_curve.png")),
-                       quote(fmt::format("{}: success on {} test situations vs training examples", name, curve_situations))));
+      plot(fmt::format("learning-curve {} {} --title {}", shell_quote(csv_path(name + "_learning_curve.csv")),
+                       shell_quote(fig_path(name + "_learning_curve.png")),
+                       shell_quote(fmt::format("{}: success on {} test situations vs training examples", name, curve_situations))));
     }
 
     // ---- figures: predictions, data set, field with ball paths, sinking window
@@ -441,15 +435,15 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
         write_file_atomic(p, format_csv(header, rows));
         for (const auto& o : f.outputs) {
           const std::string png = fmt::format("{}_{}_{}.png", name, m, o);
-          plot(fmt::format("model --predictions {} --train {} --validation {} --output {} {} --title {}", quote(p),
-                           quote(csv_path(name + "_train.csv")), quote(csv_path(name + "_validation.csv")), o,
-                           quote(fig_path(png)), quote(fmt::format("{} {}: {} (mean ± 2σ)", name, m, o))));
+          plot(fmt::format("model --predictions {} --train {} --validation {} --output {} {} --title {}", shell_quote(p),
+                           shell_quote(csv_path(name + "_train.csv")), shell_quote(csv_path(name + "_validation.csv")), o,
+                           shell_quote(fig_path(png)), shell_quote(fmt::format("{} {}: {} (mean ± 2σ)", name, m, o))));
           figures_md += fmt::format("![{} {} {}](figures/{})\n", name, m, o, png);
         }
       }
-      plot(fmt::format("dataset {} {} --validation {} --title {}", quote(csv_path(name + "_train.csv")),
-                       quote(fig_path(name + "_dataset.png")), quote(csv_path(name + "_validation.csv")),
-                       quote(fmt::format("{}: training (green) and validation (red) situations", name))));
+      plot(fmt::format("dataset {} {} --validation {} --title {}", shell_quote(csv_path(name + "_train.csv")),
+                       shell_quote(fig_path(name + "_dataset.png")), shell_quote(csv_path(name + "_validation.csv")),
+                       shell_quote(fmt::format("{}: training (green) and validation (red) situations", name))));
       figures_md += fmt::format("![{} data set](figures/{}_dataset.png)\n", name, name);
       // Field height map with the ball paths of the data set's launches (ball-only replays).
       const auto& fl = sys.field();
@@ -469,11 +463,11 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
         for (const auto& s : out.trajectory) rows.push_back({s.t, s.x, s.y, s.z, s.vx, s.vy, s.vz});
         const std::string t = csv_path(fmt::format("{}_path_{}.csv", name, k));
         write_file_atomic(t, format_csv({"t", "x", "y", "z", "vx", "vy", "vz"}, rows));
-        args += fmt::format(" --trajectory {} --hole={},{}", quote(t), hx[r], hy[r]);
+        args += fmt::format(" --trajectory {} --hole={},{}", shell_quote(t), hx[r], hy[r]);
       }
-      plot(fmt::format("field {} {}{} --tee={},{} --title {}", quote(csv_path(name + "_heights.csv")),
-                       quote(fig_path(name + "_field.png")), args, fl.tee[0], fl.tee[1],
-                       quote(fmt::format("{}: height map and ball paths of data-set launches (ball-only replays)", name))));
+      plot(fmt::format("field {} {}{} --tee={},{} --title {}", shell_quote(csv_path(name + "_heights.csv")),
+                       shell_quote(fig_path(name + "_field.png")), args, fl.tee[0], fl.tee[1],
+                       shell_quote(fmt::format("{}: height map and ball paths of data-set launches (ball-only replays)", name))));
       figures_md += fmt::format("![{} field](figures/{}_field.png)\n", name, name);
       // Sinking window at the field's own hole around the nearest example.
       std::size_t best = 0;
@@ -490,8 +484,8 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
       so.threads = opt.threads;
       const auto cells = run_sweep(sys, so);
       write_file_atomic(csv_path(name + "_sweep.csv"), sweep_csv(cells));
-      plot(fmt::format("sweep {} {} --title {}", quote(csv_path(name + "_sweep.csv")), quote(fig_path(name + "_sweep.png")),
-                       quote(fmt::format("{}: sinking window at hole ({:.2f}, {:.2f}), arm", name, so.hole[0], so.hole[1]))));
+      plot(fmt::format("sweep {} {} --title {}", shell_quote(csv_path(name + "_sweep.csv")), shell_quote(fig_path(name + "_sweep.png")),
+                       shell_quote(fmt::format("{}: sinking window at hole ({:.2f}, {:.2f}), arm", name, so.hole[0], so.hole[1]))));
       figures_md += fmt::format("![{} sinking window](figures/{}_sweep.png)\n", name, name);
       say(fmt::format("{}: figures done", name));
     }
@@ -509,8 +503,8 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
   }
 
   write_file_atomic(opt.out / "csv" / "success.csv", success_csv);
-  plot(fmt::format("success {} {} --title {}", quote(csv_path("success.csv")), quote(fig_path("success.png")),
-                   quote("success ratio per field and method (95 % Wilson interval; o = oracle ceiling)")));
+  plot(fmt::format("success {} {} --title {}", shell_quote(csv_path("success.csv")), shell_quote(fig_path("success.png")),
+                   shell_quote("success ratio per field and method (95 % Wilson interval; o = oracle ceiling)")));
   run_json["elapsed_s"] = elapsed();
   write_file_atomic(opt.out / "run.json", run_json.dump(2) + "\n");
 
