@@ -4,6 +4,7 @@
 //   sweep --field F [--hole X,Y] --angles A0:A1:N --speeds V0:V1:N [--ball-only] -o OUT.csv [--plot OUT.png]
 //   collect --field F [--strategy S] [--situations SPEC] [--seed S] [--resume] -o DATA.csv
 //   evaluate --field F --model M [--situations N] [--seed S] [--no-oracle] [--json] [-o ROWS.csv]
+//   self-teach --field F --budget N [--seed S] [--batch B] [--log PUTTS.csv] -o MODEL.json
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -24,6 +25,7 @@
 #include "experiments/reproduce.hpp"
 #include "experiments/sweep.hpp"
 #include "learning/learner.hpp"
+#include "selfteach/self_teach.hpp"
 #include "system/parallel.hpp"
 
 namespace mg::cli {
@@ -245,6 +247,62 @@ void add_evaluate(CLI::App& app) {
   });
 }
 
+void add_self_teach(CLI::App& app) {
+  struct Args {
+    SystemArgs sys;
+    std::string situations, strategy, log, out;
+    int budget = 0;
+    int batch = 1;
+    std::uint64_t seed = 1;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("self-teach", "The robot learns a field from its own putts alone: no teacher, no data set");
+  add_system_options(cmd, a->sys);
+  cmd->add_option("--budget", a->budget, "Full-system putts it may spend, misses included")->required();
+  cmd->add_option("--seed", a->seed, "Seed (candidate targets, GP restarts)")->capture_default_str();
+  cmd->add_option("--batch", a->batch, "Putts chosen together per round and played in parallel (the result depends on it, not on --threads)")
+      ->capture_default_str();
+  cmd->add_option("--situations", a->situations, "Region instead of the field's (as collect --situations)");
+  cmd->add_option("--strategy", a->strategy, "min-speed | min-angle (default: the field's situations.strategy)");
+  cmd->add_option("--log", a->log, "Also write one CSV row per putt here");
+  cmd->add_option("-o,--output", a->out, "Learner model file to write (as minigolf train)")->required();
+  cmd->callback([a] {
+    selfteach::SelfTeachOptions o;
+    o.budget = a->budget;
+    o.batch = a->batch;
+    o.seed = a->seed;
+    o.threads = a->sys.threads;
+    o.validate();
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    field::Situations region = region_of(sys.field(), a->situations);
+    if (!a->strategy.empty()) region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));
+    Progress bar("self-teach", o.budget);
+    const auto r = selfteach::self_teach(sys, region, o, [&](int done, int) { bar.update(done); });
+    bar.finish();
+    if (!a->log.empty()) {
+      std::string csv = "index,target_x,target_y,angle,speed,hit,sunk,closest_approach,launch_angle,launch_speed,labels,label_distance\n";
+      for (std::size_t i = 0; i < r.putts.size(); ++i) {
+        const auto& p = r.putts[i];
+        csv += fmt::format("{},{},{},{},{},{:d},{:d},{},{},{},{},{}\n", i, p.target[0], p.target[1], p.angle, p.speed,
+                           p.hit, p.sunk, p.closest_approach, p.launch_angle, p.launch_speed, p.labels, p.label_distance);
+      }
+      write_file_atomic(a->log, csv);
+    }
+    if (!r.trained)
+      throw InputError(fmt::format("self-teach: field '{}': {} hindsight label(s) in the region after {} putts (need "
+                                   "2): its holes are out of the robot's reach{}",
+                                   sys.field().name, r.labels.size(), r.putts.size(),
+                                   a->log.empty() ? "" : fmt::format(" (the putts are in {})", a->log)));
+    learning::save_model(r.model, a->out);
+    fmt::print("self-taught {} in {} full-system putts ({} sank while learning): {} hindsight labels{}; labels at "
+               "their own target sank {} of {}; model written to {}\n",
+               sys.field().name, r.putts.size(), r.sunk, r.labels.size(),
+               region.learn_speed ? fmt::format(" at arrival speed {:.3g} m/s", r.arrival_speed)
+                                  : fmt::format(" (angle only at {} m/s)", region.speed),
+               r.on_target_sunk, r.on_target, a->out);
+  });
+}
+
 void add_reproduce(CLI::App& app) {
   auto o = std::make_shared<experiments::ReproduceOptions>();
   auto out = std::make_shared<std::string>("out/reproduce");
@@ -290,6 +348,7 @@ void add_play_commands(CLI::App& app) {
   add_sweep(app);
   add_collect(app);
   add_evaluate(app);
+  add_self_teach(app);
   add_reproduce(app);
 }
 

@@ -377,6 +377,8 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
                                 const FullPuttOptions& options, PuttScratch* scratch) {
   const sim::World* ball_world = options.ball_world;
   if (ball_world != nullptr) check_ball_world(world, *ball_world);
+  if (!(options.record_interval >= 0.0 && options.record_interval <= 10.0))
+    throw InputError(fmt::format("record_interval: expected 0..10 s, got {}", options.record_interval));
   std::unique_ptr<PuttScratch> local;
   if (scratch == nullptr) {
     local = std::make_unique<PuttScratch>();
@@ -583,11 +585,21 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   bool may_hand_off = ball_world != nullptr;
   double came_back_at = -1.0;  // [s] time of the last fallback: no new hand-off until past it
   const mjData* ball_data = d;  // where the ball's final state is
+  const long record_every =
+      options.record_interval > 0.0 ? std::max(1L, std::lround(options.record_interval / dt)) : 0;
+  std::vector<sim::BallSample> trajectory;
+  const auto record = [&](const sim::World& w, const mjData* data) {
+    const mjtNum* q = data->qpos + w.ids().ball_qpos;
+    const mjtNum* v = data->qvel + w.ids().ball_dof;
+    trajectory.push_back({data->time - t_contact, q[0], q[1], q[2], v[0], v[1], v[2]});
+  };
+  if (record_every) record(world, d);
   long k = 1;
   for (; k <= max_steps && !decided; ++k) {
     step();
     track_ratios(model, d, run.module(), r);
     decided = tracker.update(d);
+    if (record_every && (k % record_every == 0 || decided)) record(world, d);
     if (k == launch_step) {
       const double* bv = d->qvel + ball_dof;
       r.launch = {std::atan2(bv[1], bv[0]), std::hypot(bv[0], bv[1])};
@@ -614,6 +626,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     ball_world->set_hole(bd, hole);
     ball_world->set_ball_state(bd, world.ball_state(d));
     const sim::OutcomeTracker tracker_at_handoff = tracker;
+    const std::size_t samples_at_handoff = trajectory.size();
     const double t_handoff = d->time;
     const int qb = ball_world->ids().ball_qpos;
     long kb = k + 1;
@@ -621,6 +634,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     for (; kb <= max_steps && !decided; ++kb) {
       ball_world->step(bd);
       decided = tracker.update(bd);
+      if (record_every && (kb % record_every == 0 || decided)) record(*ball_world, bd);
       const Eigen::Vector3d b(bd->qpos + qb);
       if (!decided && (b - club).norm() < fallback_radius) {
         came_back = true;
@@ -637,6 +651,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     }
     ++r.handoff_fallbacks;
     tracker = tracker_at_handoff;
+    trajectory.resize(samples_at_handoff);
     decided = false;
     // Hand off again once past the time the ball came back, when it is clear again.
     may_hand_off = r.handoff_fallbacks < kMaxHandoffFallbacks;
@@ -648,6 +663,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     mj_forward(world.model(), d);
   }
   r.outcome = tracker.outcome();
+  r.outcome.trajectory = std::move(trajectory);
   // The ball's time starts at the first contact (ball-only putts start at the launch).
   r.outcome.duration = ball_data->time - t_contact;
   r.outcome.steps = static_cast<int>(k - 1);

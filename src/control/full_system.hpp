@@ -114,6 +114,9 @@ struct FullPuttOptions {
   double hit_timeout = 3.0;       ///< [s] from the hit request to contact
   double max_duration = 30.0;     ///< [s] ball roll after the hit
   double launch_delay = 0.02;     ///< [s] after the first contact, when the launch is measured
+  /// [s] spacing of the ball trajectory samples in the outcome (from the first contact, time
+  /// counted from it; the arm and the ball-only parts alike); 0: no trajectory.
+  double record_interval = 0.0;
   sim::OutcomeRules rules{};
 
   // --- Execution noise (launch study, thesis 6.1). Zero noise: the run is unchanged, bit for bit.

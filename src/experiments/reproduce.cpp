@@ -202,13 +202,8 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
       throw InputError(fmt::format("reproduce: data set {} is missing (run with --collect, or "
                                    "scripts/make-datasets.sh)", data_file.string()));
     f.table = read_csv(data_file);
-    if (f.region.shape == field::RegionShape::kLine) {
-      const bool along_y = std::abs(f.region.to[1] - f.region.from[1]) >= std::abs(f.region.to[0] - f.region.from[0]);
-      f.inputs = {along_y ? "xi_y" : "xi_x"};
-    } else {
-      f.inputs = {"xi_x", "xi_y"};
-    }
-    f.outputs = f.region.learn_speed ? std::vector<std::string>{"angle", "speed"} : std::vector<std::string>{"angle"};
+    f.inputs = f.region.learner_inputs();
+    f.outputs = f.region.learner_outputs();
     f.methods = {"gpr", "gmr"};
     if (f.region.learn_speed) f.methods.push_back("joint-gmr");
     f.all = learning::dataset_from_table(f.table, f.inputs, f.outputs, 2);

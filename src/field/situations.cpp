@@ -67,6 +67,17 @@ std::string to_string(RegionShape shape) {
   return "?";
 }
 
+std::vector<std::string> Situations::learner_inputs() const {
+  if (shape == RegionShape::kLine)
+    return {std::abs(to[1] - from[1]) >= std::abs(to[0] - from[0]) ? "xi_y" : "xi_x"};
+  return {"xi_x", "xi_y"};
+}
+
+std::vector<std::string> Situations::learner_outputs() const {
+  if (learn_speed) return {"angle", "speed"};
+  return {"angle"};
+}
+
 std::vector<std::array<double, 2>> Situations::collection_points() const {
   std::vector<std::array<double, 2>> p;
   switch (shape) {

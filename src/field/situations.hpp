@@ -37,6 +37,10 @@ struct Situations {
   std::string strategy = "min-speed";  ///< the teacher's default strategy here
   bool from_file = false;       ///< false: the default region was filled in
 
+  /// The learner inputs of the region: a line's one coordinate (xi_x or xi_y, whichever varies
+  /// more), else xi_x, xi_y (hole - tee [m]); outputs angle[, speed].
+  std::vector<std::string> learner_inputs() const;
+  std::vector<std::string> learner_outputs() const;
   /// The hole positions a data set is collected at (line, grid and box: their grid; list: the
   /// points), in a fixed order (x-major for grids).
   std::vector<std::array<double, 2>> collection_points() const;

@@ -34,13 +34,12 @@ class Search {
     dx_ = hole[0] - f.tee[0];
     dy_ = hole[1] - f.tee[1];
     distance_ = std::hypot(dx_, dy_);
-    aim_ = std::atan2(dy_, dx_);
     a_roll_ = 5.0 / 7.0 * f.rolling_resistance * kGravity;
     vt_ = arrival_speed(f, options.strategy);
     radius_ = 0.5 * f.hole.diameter;
-    const double climb = f.height(hole[0], hole[1]) - f.height(f.tee[0], f.tee[1]);
-    const double v2 = vt_ * vt_ + 2.0 * a_roll_ * distance_ + 10.0 / 7.0 * kGravity * climb;
-    prior_launch_speed_ = 7.0 / 5.0 * std::sqrt(std::max(v2, 0.04));
+    const LaunchGuess prior = prior_launch(f, hole, vt_);
+    aim_ = prior.angle;
+    prior_launch_speed_ = prior.speed;
   }
 
   Probe residual(const sim::PuttOutcome& o) const {
@@ -321,6 +320,14 @@ double arrival_speed(const field::Field& field, Strategy strategy) {
   // 0.7x the speeds of a 60 mm one at the same offset), so the fast arrival scales with depth.
   const double depth_factor = std::clamp(field.hole.depth / 0.06, 0.5, 1.0);
   return std::max(kMinSpeedArrival, kMinAngleArrival * depth_factor);
+}
+
+LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> hole, double arrival) {
+  const double dx = hole[0] - field.tee[0], dy = hole[1] - field.tee[1];
+  const double a_roll = 5.0 / 7.0 * field.rolling_resistance * kGravity;
+  const double climb = field.height(hole[0], hole[1]) - field.height(field.tee[0], field.tee[1]);
+  const double v2 = arrival * arrival + 2.0 * a_roll * std::hypot(dx, dy) + 10.0 / 7.0 * kGravity * climb;
+  return {std::atan2(dy, dx), 7.0 / 5.0 * std::sqrt(std::max(v2, 0.04))};
 }
 
 Example teach(const system::System& system, system::SystemData& data, std::array<double, 2> hole,

@@ -1,0 +1,371 @@
+#include "selfteach/self_teach.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "core/rng.hpp"
+#include "stats/gpr.hpp"
+#include "system/parallel.hpp"
+#include "teacher/teacher.hpp"
+
+namespace mg::selfteach {
+
+void SelfTeachOptions::validate() const {
+  if (budget < 1 || budget > 100000)
+    throw InputError(fmt::format("self-teach: budget: expected 1..100000 full-system putts, got {}", budget));
+  if (batch < 1 || batch > 64)
+    throw InputError(fmt::format("self-teach: batch: expected 1..64 putts per round, got {}", batch));
+  if (candidates < 1 || candidates > 100000)
+    throw InputError(fmt::format("self-teach: candidates: expected 1..100000, got {}", candidates));
+  if (!(record_interval > 0.0 && record_interval <= 0.05))
+    throw InputError(fmt::format("self-teach: record_interval: expected 0..0.05 s, got {}", record_interval));
+  for (int c : checkpoints)
+    if (c < 1 || c > budget)
+      throw InputError(fmt::format("self-teach: checkpoint {}: expected 1..budget ({})", c, budget));
+}
+
+namespace {
+
+constexpr double kWindowAngle = 0.004;  ///< [rad] the sinking window's scale (teacher margins)
+constexpr double kWindowSpeed = 0.03;   ///< [m/s]
+constexpr double kElasticRatio = 1.6;   ///< launch / club speed before any putt: (1 + e), e = 0.6
+constexpr double kOnTarget = 0.01;      ///< [m] a label this close to its own target is checked
+constexpr double kBatchSpread = 0.05;   ///< [m] targets of one round keep apart by about this
+constexpr std::size_t kMaxTrainingLabels = 400;
+constexpr double kPseudoCover = 0.02;   ///< [m] a real label this close replaces a pseudo-label
+constexpr double kTriedRadius = 0.03;   ///< [m] an earlier target this close halves a candidate's score  ///< GPR cost: thinned evenly beyond this
+
+double median(std::vector<double> v, double fallback) {
+  if (v.empty()) return fallback;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::string>& inputs,
+                          std::array<double, 2> hole) {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(inputs.size()));
+  for (std::size_t c = 0; c < inputs.size(); ++c)
+    x(static_cast<Eigen::Index>(c)) = inputs[c] == "xi_x" ? hole[0] - field.tee[0] : hole[1] - field.tee[1];
+  return x;
+}
+
+/// The planner: prior (aim, rolling distance, measured launch relation) + a GP per output on the
+/// labels' residuals from it.
+class Planner {
+ public:
+  Planner(const system::System& system, const field::Situations& region, double arrival,
+          std::uint64_t seed)
+      : sys_(system), region_(region), inputs_(region.learner_inputs()), arrival_(arrival),
+        rng_(derive_seed(seed, 11)) {}
+
+  void set_arrival(double arrival) { arrival_ = arrival; }
+
+  /// Re-estimates the launch relation from `putts` and refits the residual GPs to `labels` plus
+  /// the pseudo-labels of the putts that gave none near their target.
+  void update(const std::vector<PuttRecord>& putts, std::vector<Label> labels) {
+    std::vector<double> bias, ratio;
+    for (const auto& p : putts)
+      if (p.hit && p.speed > 0.0) {
+        bias.push_back(p.launch_angle - p.angle);
+        ratio.push_back(p.launch_speed / p.speed);
+      }
+    bias_ = median(bias, 0.0);
+    ratio_ = median(ratio, kElasticRatio);
+    const std::size_t real = labels.size();
+    for (std::size_t i = 0; i < putts.size(); ++i) {
+      const auto& p = putts[i];
+      if (!p.hit) continue;
+      bool covered = false;
+      for (std::size_t k = 0; k < real && !covered; ++k)
+        covered = std::hypot(labels[k].hole[0] - p.target[0], labels[k].hole[1] - p.target[1]) < kPseudoCover;
+      if (!covered) labels.push_back(pseudo_label(p, static_cast<int>(i)));
+    }
+    const int outputs = region_.learn_speed ? 2 : 1;
+    gps_.clear();
+    if (labels.empty()) return;
+    const auto n = static_cast<Eigen::Index>(labels.size());
+    Eigen::MatrixXd x(n, static_cast<Eigen::Index>(inputs_.size()));
+    Eigen::MatrixXd r(n, outputs);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Label& l = labels[static_cast<std::size_t>(i)];
+      x.row(i) = input_row(sys_.field(), inputs_, l.hole).transpose();
+      const auto [a0, v0] = prior(l.hole);
+      r(i, 0) = l.angle - a0;
+      if (outputs == 2) r(i, 1) = l.speed - v0;
+    }
+    // Hyperparameters are re-optimised when the label count has grown by a third; in between
+    // the last ones are reused (the GP is then rebuilt exactly, only not re-tuned).
+    const bool refit = hyper_.empty() || n >= fitted_at_ + std::max<Eigen::Index>(1, fitted_at_ / 3);
+    if (refit) {
+      hyper_.clear();
+      for (int o = 0; o < outputs; ++o) {
+        stats::GprOptions go;
+        go.restarts = 3;
+        hyper_.push_back(stats::fit_gpr(x, r.col(o), rng_, go).hyper);
+      }
+      fitted_at_ = n;
+    }
+    for (int o = 0; o < outputs; ++o) gps_.push_back(stats::make_gp_model(x, r.col(o), hyper_[static_cast<std::size_t>(o)]));
+  }
+
+  /// The putt `p` corrected by how it missed its target (the teacher's first Newton step).
+  Label pseudo_label(const PuttRecord& p, int index) const {
+    const auto& f = sys_.field();
+    const double distance = std::max(0.1, std::hypot(p.target[0] - f.tee[0], p.target[1] - f.tee[1]));
+    Label l;
+    l.hole = p.target;
+    l.angle = p.angle + std::clamp(p.approach_lateral / distance, -0.05, 0.05);
+    l.speed = p.speed;
+    l.putt = index;
+    if (region_.learn_speed) {
+      const double a_roll = 5.0 / 7.0 * f.rolling_resistance * 9.81;
+      const double e = p.approach_speed * p.approach_speed - 2.0 * a_roll * std::max(0.0, p.approach_along);
+      const double rolling_per_club = 5.0 / 7.0 * ratio_;  // ball rolling speed per club speed
+      const double v2 = p.speed * p.speed - (e - arrival_ * arrival_) / (rolling_per_club * rolling_per_club);
+      l.speed = std::clamp(std::sqrt(std::max(v2, 0.0)), 0.7 * p.speed, 1.3 * p.speed);
+    }
+    l.arrival_speed = arrival_;
+    return l;
+  }
+
+  /// The prior's club (angle, speed) for a hole.
+  std::array<double, 2> prior(std::array<double, 2> hole) const {
+    const auto g = teacher::prior_launch(sys_.field(), hole, arrival_);
+    const double v = region_.learn_speed ? g.speed / ratio_ : region_.speed;
+    return {g.angle - bias_, v};
+  }
+
+  /// The putt for a hole, inside the module's envelope, and its uncertainty in window units.
+  std::array<double, 3> plan(std::array<double, 2> hole) const {
+    auto [a, v] = prior(hole);
+    double score = 1.0;
+    if (!gps_.empty()) {
+      const Eigen::VectorXd x = input_row(sys_.field(), inputs_, hole);
+      const auto pa = stats::gp_predict(gps_[0], x);
+      a += pa.mean;
+      score = std::sqrt(pa.latent_variance) / kWindowAngle;
+      if (gps_.size() > 1) {
+        const auto pv = stats::gp_predict(gps_[1], x);
+        v += pv.mean;
+        score = std::max(score, std::sqrt(pv.latent_variance) / kWindowSpeed);
+      }
+    }
+    const auto& c = sys_.config();
+    a = std::clamp(a, c.angle_min + 1e-6, c.angle_max - 1e-6);
+    if (region_.learn_speed) v = std::clamp(v, c.speed_min, c.speed_max);
+    return {a, v, score};
+  }
+
+ private:
+  const system::System& sys_;
+  const field::Situations& region_;
+  std::vector<std::string> inputs_;
+  double arrival_;
+  Rng rng_;
+  double bias_ = 0.0, ratio_ = kElasticRatio;
+  std::vector<stats::GpHyperparameters> hyper_;
+  Eigen::Index fitted_at_ = 0;
+  std::vector<stats::GpModel> gps_;
+};
+
+std::vector<std::array<double, 2>> candidate_targets(const field::Situations& region, int n,
+                                                     std::uint64_t seed) {
+  const auto b = region_bounds(region);
+  std::vector<std::array<double, 2>> c;
+  if (region.shape == field::RegionShape::kList) {
+    c = region.points;
+  } else {
+    c.push_back({0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3])});
+    for (const auto& p : region.collection_points()) c.push_back(p);
+  }
+  for (const auto& p : region.sample(n, derive_seed(seed, 13))) c.push_back(p);
+  return c;
+}
+
+double label_margin(const field::Situations& region) {
+  const auto b = region_bounds(region);
+  return 0.05 + 0.25 * std::max(b[1] - b[0], b[3] - b[2]);
+}
+
+}  // namespace
+
+learning::Model model_from_labels(const system::System& system, const field::Situations& region,
+                                  const std::vector<Label>& labels, int putts, std::uint64_t seed) {
+  std::vector<const Label*> use;
+  for (const auto& l : labels)
+    if (putts < 0 || l.putt < putts) use.push_back(&l);
+  if (use.size() < 2)
+    throw InputError(fmt::format("self-teach: field '{}': {} hindsight label(s) in the region after {} "
+                                 "putts (need 2): its holes seem out of the robot's reach",
+                                 system.field().name, use.size(), putts < 0 ? 0 : putts));
+  if (use.size() > kMaxTrainingLabels) {
+    std::vector<const Label*> thin;
+    for (std::size_t k = 0; k < kMaxTrainingLabels; ++k) thin.push_back(use[k * use.size() / kMaxTrainingLabels]);
+    use = std::move(thin);
+  }
+  learning::Dataset d;
+  d.source = "self-teach labels";
+  d.input_names = region.learner_inputs();
+  d.output_names = region.learner_outputs();
+  const auto n = static_cast<Eigen::Index>(use.size());
+  d.inputs.resize(n, static_cast<Eigen::Index>(d.input_names.size()));
+  d.outputs.resize(n, static_cast<Eigen::Index>(d.output_names.size()));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Label& l = *use[static_cast<std::size_t>(i)];
+    d.inputs.row(i) = input_row(system.field(), d.input_names, l.hole).transpose();
+    d.outputs(i, 0) = l.angle;
+    if (region.learn_speed) d.outputs(i, 1) = l.speed;
+  }
+  learning::TrainOptions o;
+  o.method = learning::Method::kGpr;
+  o.seed = seed;
+  learning::Model m = learning::train(d, o);
+  if (!region.learn_speed) m.fixed = {{"speed", region.speed}};
+  return m;
+}
+
+bool replay_label(const system::System& system, system::SystemData& data, const Label& label) {
+  return system::arm_putt(system, data, label.hole, label.angle, label.speed).outcome.sunk;
+}
+
+SelfTeachResult self_teach(const system::System& system, const field::Situations& region,
+                           const SelfTeachOptions& options,
+                           const std::function<void(int, int)>& progress) {
+  options.validate();
+  region.validate(system.field(), "self-teach region");
+  const auto& field = system.field();
+  HindsightRules rules;
+  rules.learn_speed = region.learn_speed;
+  rules.arrival_speed = teacher::arrival_speed(field, teacher::parse_strategy(region.strategy));
+  const double margin = label_margin(region);
+  const double hole_radius = 0.5 * field.hole.diameter;
+  const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
+
+  SelfTeachResult res;
+  res.arrival_speed = rules.arrival_speed;
+  Planner planner(system, region, rules.arrival_speed, options.seed);
+  const auto candidates = candidate_targets(region, options.candidates, options.seed);
+  std::vector<std::array<double, 2>> tried;
+  std::vector<int> checkpoints = options.checkpoints;
+  std::sort(checkpoints.begin(), checkpoints.end());
+  checkpoints.erase(std::unique(checkpoints.begin(), checkpoints.end()), checkpoints.end());
+  std::size_t next_checkpoint = 0;
+  int failed_checks = 0;
+
+  const auto relabel = [&] {
+    res.labels.clear();
+    for (std::size_t i = 0; i < res.putts.size(); ++i) {
+      auto& p = res.putts[i];
+      const auto ls = hindsight_labels(res.paths[i], p.target, hole_radius, rolling_decel, region, margin, p.angle,
+                                       p.speed, static_cast<int>(i), rules);
+      p.labels = static_cast<int>(ls.size());
+      p.label_distance = ls.empty() ? -1.0
+                                    : std::hypot(ls[0].hole[0] - p.target[0], ls[0].hole[1] - p.target[1]);
+      res.labels.insert(res.labels.end(), ls.begin(), ls.end());
+    }
+  };
+
+  while (static_cast<int>(res.putts.size()) < options.budget) {
+    const int round = std::min(options.batch, options.budget - static_cast<int>(res.putts.size()));
+    // Choose the round's targets before playing any of them.
+    std::vector<std::array<double, 2>> targets;
+    std::vector<std::array<double, 3>> plans;
+    for (int b = 0; b < round; ++b) {
+      double best = -1.0;
+      std::size_t pick = 0;
+      std::array<double, 3> best_plan{};
+      for (std::size_t c = 0; c < candidates.size(); ++c) {
+        const auto& h = candidates[c];
+        auto plan = planner.plan(h);
+        double s = plan[2];
+        for (const auto& t : tried)
+          if (std::hypot(t[0] - h[0], t[1] - h[1]) < kTriedRadius) s *= 0.5;
+        for (const auto& t : targets) {
+          const double d2 = (t[0] - h[0]) * (t[0] - h[0]) + (t[1] - h[1]) * (t[1] - h[1]);
+          s *= 1.0 - std::exp(-0.5 * d2 / (kBatchSpread * kBatchSpread));
+        }
+        if (s > best) {
+          best = s;
+          pick = c;
+          best_plan = plan;
+        }
+      }
+      targets.push_back(candidates[pick]);
+      plans.push_back(best_plan);
+    }
+    std::vector<control::FullPuttResult> results(static_cast<std::size_t>(round));
+    system::parallel_for(system, round, system::thread_count(options.threads),
+                         [&](int i, system::SystemData& data) {
+                           const auto k = static_cast<std::size_t>(i);
+                           control::FullPuttOptions po;
+                           po.record_interval = options.record_interval;
+                           results[k] = system::arm_putt(system, data, targets[k], plans[k][0],
+                                                         plans[k][1], po);
+                         });
+    for (int b = 0; b < round; ++b) {
+      const auto k = static_cast<std::size_t>(b);
+      const auto& r = results[k];
+      PuttRecord p;
+      p.target = targets[k];
+      p.angle = plans[k][0];
+      p.speed = plans[k][1];
+      p.hit = r.hit;
+      p.sunk = r.outcome.sunk;
+      p.closest_approach = r.outcome.closest_approach;
+      p.launch_angle = r.launch.angle;
+      p.launch_speed = r.launch.speed;
+      p.approach_speed = r.outcome.approach_speed;
+      p.approach_lateral = r.outcome.approach_lateral;
+      p.approach_along = r.outcome.approach_along;
+      const int index = static_cast<int>(res.putts.size());
+      const auto ls = r.hit ? hindsight_labels(r.outcome.trajectory, p.target, hole_radius, rolling_decel, region,
+                                               margin, p.angle, p.speed, index, rules)
+                            : std::vector<Label>{};
+      p.labels = static_cast<int>(ls.size());
+      if (!ls.empty())
+        p.label_distance = std::hypot(ls[0].hole[0] - p.target[0], ls[0].hole[1] - p.target[1]);
+      res.sunk += p.sunk ? 1 : 0;
+      res.labels.insert(res.labels.end(), ls.begin(), ls.end());
+      res.putts.push_back(p);
+      res.paths.push_back(r.outcome.trajectory);
+      tried.push_back(p.target);
+      if (p.label_distance >= 0.0 && p.label_distance < kOnTarget) {
+        ++res.on_target;
+        if (p.sunk) ++res.on_target_sunk;
+        else ++failed_checks;
+      }
+    }
+    // Labels at their own targets that did not sink: s* is too fast for this cup.
+    if (rules.learn_speed && failed_checks >= 2 &&
+        res.on_target_sunk < 0.9 * res.on_target && rules.arrival_speed > 0.2) {
+      rules.arrival_speed = std::max(0.2, 0.85 * rules.arrival_speed);
+      planner.set_arrival(rules.arrival_speed);
+      ++res.arrival_corrections;
+      failed_checks = 0;
+      res.on_target = res.on_target_sunk = 0;
+      relabel();
+    }
+    planner.update(res.putts, res.labels);
+    const int used = static_cast<int>(res.putts.size());
+    while (next_checkpoint < checkpoints.size() && checkpoints[next_checkpoint] <= used) {
+      const int c = checkpoints[next_checkpoint++];
+      try {
+        res.checkpoint_models.emplace_back(c, model_from_labels(system, region, res.labels, c, options.seed));
+      } catch (const InputError&) {
+        // Fewer than two labels so far: no model at this checkpoint (it counts as no success).
+      }
+    }
+    if (progress) progress(used, options.budget);
+  }
+  res.arrival_speed = rules.arrival_speed;
+  res.trained = res.labels.size() >= 2;
+  if (res.trained) res.model = model_from_labels(system, region, res.labels, -1, options.seed);
+  return res;
+}
+
+}  // namespace mg::selfteach

@@ -1,0 +1,77 @@
+// The robot teaches itself: success on the flat field within a small budget, determinism over
+// threads, refusals.
+#include "selfteach/self_teach.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "experiments/evaluate.hpp"
+
+namespace mg::selfteach {
+namespace {
+
+const system::System& flat() {
+  static const system::System s(system::load_config("", "flat"));
+  return s;
+}
+
+TEST(SelfTeach, LearnsTheFlatFieldFromItsOwnPuttsWithinASmallBudget) {
+  SelfTeachOptions o;
+  o.budget = 12;
+  o.seed = 3;
+  o.checkpoints = {1, 6};
+  const auto& region = flat().field().situations;
+  const SelfTeachResult r = self_teach(flat(), region, o);
+  EXPECT_EQ(r.putts.size(), 12u);
+  EXPECT_GE(r.labels.size(), 10u);  // nearly every putt crosses the line
+  EXPECT_EQ(r.model.input_names, region.learner_inputs());
+  ASSERT_NE(r.model.fixed_value("speed"), nullptr);
+  EXPECT_EQ(*r.model.fixed_value("speed"), region.speed);
+  // A checkpoint with fewer than two labels has no model; the one after 6 putts does.
+  ASSERT_EQ(r.checkpoint_models.size(), 1u);
+  EXPECT_EQ(r.checkpoint_models[0].first, 6);
+  experiments::EvaluateOptions e;
+  e.situations = 40;
+  e.seed = 99;
+  e.oracle = false;
+  const auto ev = experiments::evaluate_model(flat(), r.model, region, e);
+  // Measured 40 of 40 (seed 3); a margin of four misses.
+  EXPECT_GE(ev.sunk, 36) << ev.sunk;
+}
+
+TEST(SelfTeach, SameSeedSameModelWithOneAndTwoThreads) {
+  SelfTeachOptions o;
+  o.budget = 6;
+  o.batch = 2;
+  o.seed = 5;
+  o.threads = 1;
+  field::Situations region = flat().field().situations;
+  const auto one = self_teach(flat(), region, o);
+  o.threads = 2;
+  const auto two = self_teach(flat(), region, o);
+  EXPECT_EQ(learning::model_to_json(one.model).dump(), learning::model_to_json(two.model).dump());
+  ASSERT_EQ(one.putts.size(), two.putts.size());
+  for (std::size_t i = 0; i < one.putts.size(); ++i) EXPECT_EQ(one.putts[i].angle, two.putts[i].angle);
+}
+
+TEST(SelfTeach, RefusesABadBudgetAndAnUnplayableRegion) {
+  const auto& region = flat().field().situations;
+  SelfTeachOptions o;
+  o.budget = 0;
+  EXPECT_THROW(self_teach(flat(), region, o), InputError);
+  o.budget = -3;
+  EXPECT_THROW(self_teach(flat(), region, o), InputError);
+  // At the slowest club speed the ball stops a few decimetres from the tee: no putt reaches the
+  // line of holes.
+  field::Situations far = region;
+  far.speed = flat().config().speed_min;
+  o.budget = 3;
+  const auto r = self_teach(flat(), far, o);
+  EXPECT_FALSE(r.trained);
+  EXPECT_EQ(r.putts.size(), 3u);
+  EXPECT_TRUE(r.labels.empty());
+  EXPECT_THROW(model_from_labels(flat(), far, r.labels, -1, 1), InputError);
+}
+
+}  // namespace
+}  // namespace mg::selfteach
