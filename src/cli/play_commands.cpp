@@ -4,6 +4,7 @@
 //   sweep --field F [--hole X,Y] --angles A0:A1:N --speeds V0:V1:N [--ball-only] -o OUT.csv [--plot OUT.png]
 //   collect --field F [--strategy S] [--situations SPEC] [--seed S] [--resume] -o DATA.csv
 //   evaluate --field F --model M [--situations N] [--seed S] [--no-oracle] [--json] [-o ROWS.csv]
+//   curves --field F --learner self-teach|teacher-gpr|crkr [--seeds N] [--checkpoints 10,25,50] -o CURVES.csv
 //   self-teach --field F --budget N [--seed S] [--batch B] [--log PUTTS.csv] -o MODEL.json
 #include <cmath>
 #include <cstdio>
@@ -22,6 +23,7 @@
 #include "core/io.hpp"
 #include "experiments/collect.hpp"
 #include "experiments/evaluate.hpp"
+#include "experiments/learning_curves.hpp"
 #include "experiments/reproduce.hpp"
 #include "experiments/sweep.hpp"
 #include "learning/learner.hpp"
@@ -303,12 +305,55 @@ void add_self_teach(CLI::App& app) {
   });
 }
 
+void add_curves(CLI::App& app) {
+  struct Args {
+    SystemArgs sys;
+    std::string learner = "self-teach", checkpoints = "10,25,50,100,150", situations_spec, out;
+    experiments::CurveOptions o;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("curves", "Learning curves: test success against full-system putts spent, per seed");
+  add_system_options(cmd, a->sys);
+  cmd->add_option("--learner", a->learner, "self-teach | teacher-gpr | crkr")->capture_default_str();
+  cmd->add_option("--checkpoints", a->checkpoints, "Putt counts, increasing, comma-separated")->capture_default_str();
+  cmd->add_option("--seeds", a->o.seeds, "Runs")->capture_default_str();
+  cmd->add_option("--situations", a->o.situations, "Test situations per checkpoint")->capture_default_str();
+  cmd->add_option("--seed", a->o.seed, "Seed of the runs")->capture_default_str();
+  cmd->add_option("--test-seed", a->o.test_seed, "Seed of the test situations")->capture_default_str();
+  cmd->add_option("--region", a->situations_spec, "Region instead of the field's (as collect --situations)");
+  cmd->add_option("-o,--output", a->out, "CSV to write")->required();
+  cmd->callback([a] {
+    experiments::CurveLearner learner;
+    if (a->learner == "self-teach") learner = experiments::CurveLearner::kSelfTeach;
+    else if (a->learner == "teacher-gpr") learner = experiments::CurveLearner::kTeacherGpr;
+    else if (a->learner == "crkr") learner = experiments::CurveLearner::kCrkr;
+    else throw InputError(fmt::format("--learner: expected self-teach, teacher-gpr or crkr, got '{}'", a->learner));
+    a->o.checkpoints.clear();
+    for (const auto& c : parse_names("--checkpoints", a->checkpoints))
+      a->o.checkpoints.push_back(static_cast<int>(std::min<std::uint64_t>(parse_unsigned("--checkpoints", c), 1000000)));
+    a->o.threads = a->sys.threads;
+    a->o.validate();
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    const field::Situations region = region_of(sys.field(), a->situations_spec);
+    a->o.teacher = teacher_options(region, "");
+    Progress bar("curves", a->o.seeds);
+    const auto runs = experiments::learning_curves(sys, region, learner, a->o, [&](int done, int) { bar.update(done); });
+    bar.finish();
+    write_file_atomic(a->out, experiments::curves_csv(runs));
+    const auto s = experiments::summarize(runs);
+    for (std::size_t k = 0; k < s.putts.size(); ++k)
+      fmt::print("{} on {} after {} putts: median {:.1f} % (10-90 %: {:.1f}-{:.1f} %) over {} runs\n", a->learner,
+                 sys.field().name, s.putts[k], 100 * s.median[k], 100 * s.q10[k], 100 * s.q90[k], runs.size());
+  });
+}
+
 void add_reproduce(CLI::App& app) {
   auto o = std::make_shared<experiments::ReproduceOptions>();
   auto out = std::make_shared<std::string>("out/reproduce");
   auto datasets = std::make_shared<std::string>();
   auto fields = std::make_shared<std::string>("flat,multiple-hills,regular-hill,arctan");
   CLI::App* cmd = app.add_subcommand("reproduce", "Thesis chapter 6 end to end: data sets, training, MSE, the robot playing, figures, report.md");
+  cmd->add_flag("--no-beyond", [o](std::int64_t) { o->beyond = false; }, "Skip the beyond-the-thesis part (self-teaching, baselines, noise)");
   cmd->add_flag("--quick", o->quick, "30 test situations, 3 learning-curve subsets, 100 arctan splits (under 10 min on 2 cores)");
   cmd->add_option("-o,--output", *out, "Output folder")->capture_default_str();
   cmd->add_option("--threads", o->threads, "Threads (0: all cores; results do not depend on it)")->check(CLI::Range(0, 256));
@@ -349,6 +394,7 @@ void add_play_commands(CLI::App& app) {
   add_collect(app);
   add_evaluate(app);
   add_self_teach(app);
+  add_curves(app);
   add_reproduce(app);
 }
 

@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include <fmt/format.h>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
+#include "core/rng.hpp"
 #include "system/parallel.hpp"
 
 namespace mg::experiments {
@@ -70,13 +72,41 @@ std::vector<Prediction> predict_hits(const learning::Model& model, const field::
   return out;
 }
 
+void EvaluateOptions::validate() const {
+  if (situations < 1 || situations > 100000)
+    throw InputError(fmt::format("--situations: expected 1..100000, got {}", situations));
+  if (!(perception_noise >= 0.0 && perception_noise <= 0.1))
+    throw InputError(fmt::format("perception noise: expected 0..0.1 m, got {}", perception_noise));
+  if (!(torque_noise >= 0.0 && torque_noise <= 0.1))
+    throw InputError(fmt::format("torque noise: expected 0..0.1 of the limits, got {}", torque_noise));
+}
+
 Evaluation evaluate_model(const system::System& system, const learning::Model& model,
                           const field::Situations& region, const EvaluateOptions& options,
                           const std::function<void(int, int)>& progress) {
-  if (options.situations < 1 || options.situations > 100000)
-    throw InputError(fmt::format("--situations: expected 1..100000, got {}", options.situations));
+  check_playable_model(model, "model");
+  return evaluate_policy(
+      system, [&](const std::vector<std::array<double, 2>>& holes) { return predict_hits(model, system.field(), holes); },
+      region, options, progress);
+}
+
+Evaluation evaluate_policy(const system::System& system, const Policy& policy,
+                           const field::Situations& region, const EvaluateOptions& options,
+                           const std::function<void(int, int)>& progress) {
+  options.validate();
   const auto holes = region.sample(options.situations, options.seed);
-  const auto predictions = predict_hits(model, system.field(), holes);
+  std::vector<std::array<double, 2>> perceived = holes;
+  if (options.perception_noise > 0.0)
+    for (std::size_t i = 0; i < holes.size(); ++i) {
+      Rng rng(derive_seed(options.noise_seed, i));
+      std::normal_distribution<double> n(0.0, options.perception_noise);
+      const double hx = n(rng), hy = n(rng), bx = n(rng), by = n(rng);
+      // xi = hole - ball: the hole's and the ball's errors both enter it.
+      perceived[i] = {holes[i][0] + hx - bx, holes[i][1] + hy - by};
+    }
+  const auto predictions = policy(perceived);
+  if (predictions.size() != holes.size())
+    throw Error(fmt::format("policy: {} predictions for {} situations", predictions.size(), holes.size()));
   Evaluation e;
   e.rows.resize(holes.size());
   const auto& c = system.config();
@@ -92,7 +122,12 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
         r.in_envelope = std::isfinite(a) && std::isfinite(v) && a >= c.angle_min && a <= c.angle_max &&
                         v >= c.speed_min && v <= c.speed_max;
         if (r.in_envelope) {
-          const control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v);
+          control::FullPuttOptions po;
+          if (options.torque_noise > 0.0) {
+            po.torque_noise = options.torque_noise;
+            po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
+          }
+          const control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
           r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
           r.outcome = p.outcome;
         }

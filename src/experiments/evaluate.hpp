@@ -37,6 +37,14 @@ struct EvaluateOptions {
   int threads = 0;
   bool oracle = true;                  ///< also run the teacher on every situation
   teacher::TeacherOptions teacher;     ///< for the oracle
+  // --- Noise (issue 10). Zero: the run is unchanged, bit for bit.
+  /// Std [m] of the perceived hole's and the perceived ball's position error, per axis (as the
+  /// network vision feed adds): the robot chooses its putt for the xi it perceives.
+  double perception_noise = 0.0;
+  /// Execution noise: joint-torque disturbance std as a fraction of the limits (launch study).
+  double torque_noise = 0.0;
+  std::uint64_t noise_seed = 1;        ///< situation i draws from derive_seed(noise_seed, i)
+  void validate() const;               ///< InputError naming the field
 };
 
 struct SituationResult {
@@ -58,8 +66,17 @@ struct Evaluation {
   double oracle_ceiling = 0.0;  ///< NaN without the oracle
 };
 
+/// Chooses the putts for a list of (perceived) hole positions.
+using Policy = std::function<std::vector<Prediction>(const std::vector<std::array<double, 2>>&)>;
+
 /// Plays `options.situations` situations drawn from `region` with `seed` (the same for every
-/// model, so methods are compared on the same holes). Same bits for any thread count.
+/// policy, so methods are compared on the same holes), each with the putt `policy` chooses for
+/// the hole as perceived. Same bits for any thread count.
+Evaluation evaluate_policy(const system::System& system, const Policy& policy,
+                           const field::Situations& region, const EvaluateOptions& options,
+                           const std::function<void(int, int)>& progress = {});
+
+/// evaluate_policy with a learner model's predictions (predict_hits).
 Evaluation evaluate_model(const system::System& system, const learning::Model& model,
                           const field::Situations& region, const EvaluateOptions& options,
                           const std::function<void(int, int)>& progress = {});

@@ -16,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "core/rng.hpp"
+#include "experiments/beyond.hpp"
 #include "experiments/collect.hpp"
 #include "experiments/evaluate.hpp"
 #include "experiments/sweep.hpp"
@@ -157,6 +158,7 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
 
   std::string report;
   std::string mse_md, success_md, curves_md, data_md, figures_md;
+  std::map<std::string, std::string> beyond_md;
   std::vector<std::vector<double>> mse_rows;
   std::string success_csv = "field,method,situations,sunk,success_ratio,ci_lo,ci_hi,oracle_ceiling,thesis_ratio\n";
   nlohmann::json run_json = {{"seed", opt.seed}, {"quick", opt.quick}, {"revision", opt.revision},
@@ -389,6 +391,21 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
                        shell_quote(fmt::format("{}: success on {} test situations vs training examples", name, curve_situations))));
     }
 
+    // ---- beyond the thesis: the robot teaches itself; baselines; noise
+    if (opt.beyond) {
+      BeyondOptions bo;
+      bo.quick = opt.quick;
+      bo.threads = opt.threads;
+      bo.seed = opt.seed;
+      bo.test_situations = n_test;
+      bo.teacher = f.teacher;
+      bo.csv_path = csv_path;
+      bo.fig_path = fig_path;
+      bo.plot = plot;
+      bo.say = say;
+      for (const auto& [table, rows] : beyond_thesis(sys, name, f.region, models, bo)) beyond_md[table] += rows;
+    }
+
     // ---- figures: predictions, data set, field with ball paths, sinking window
     {
       std::vector<std::array<double, 2>> grid;
@@ -519,6 +536,31 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
   report += "\n![success](figures/success.png)\n";
   report += fmt::format("\n## Learning curves (beyond the thesis)\n\nSuccess on {} test situations against the number of training examples (random subsets of the training set; median and 10-90 % over {} subsets).\n\n| field | method | examples | median success | 10-90 % |\n|---|---|---|---|---|\n", curve_situations, curve_seeds) + curves_md;
   for (const auto& name : opt.fields) report += fmt::format("![{} learning curve](figures/{}_learning_curve.png)\n", name, name);
+  if (opt.beyond) {
+    report += fmt::format(
+        "\n## Beyond the thesis: the robot teaches itself\n\n"
+        "No teacher, no data set: `minigolf self-teach` chooses its own putts on the full system and learns from every "
+        "outcome, misses included, through hindsight labels (where each ball path says other holes would have been sunk). "
+        "Baselines in the same simulator, on the same test situations, with the same accounting: **teacher-gpr** is the "
+        "thesis protocol (the teacher collects examples at random situations, every full-system putt it spends counted; "
+        "GPR on what it found so far), **crkr** is Cost-regularized Kernel Regression (Kober et al. 2012). "
+        "Success against own full-system putts, median and 10-90 % over {} runs, {} test situations per point.\n\n"
+        "| field | learner | own putts | median success | 10-90 % |\n|---|---|---|---|---|\n",
+        opt.quick ? 2 : 10, opt.quick ? 30 : 100);
+    report += beyond_md["curves"];
+    report += fmt::format("\n### Goal check: one self-taught robot (seed {}) on {} test situations\n\n"
+                          "| field | own putts | situations | sunk | success (95 % CI) |\n|---|---|---|---|---|\n", opt.seed, n_test) +
+              beyond_md["goal"];
+    report += "\n### Hindsight labels replayed with the hole really there\n\nLabels more than 2 cm from the target of the putt "
+              "they came from, replayed on the full system with the hole at the label.\n\n"
+              "| field | putts | labels | replayed | sank | precision (95 % CI) |\n|---|---|---|---|---|---|\n" + beyond_md["hindsight"];
+    report += fmt::format("\n### Noise\n\nPerception: the hole's and the ball's perceived positions each off by a Gaussian of this "
+                          "std per axis (the robot chooses its putt for the xi it sees). Execution: the launch study's joint-torque "
+                          "noise. {} test situations per point.\n\n"
+                          "| field | model | noise | level | success (95 % CI) |\n|---|---|---|---|---|\n", opt.quick ? 30 : 100) +
+              beyond_md["noise"];
+    report += "\n" + beyond_md["figures"];
+  }
   report += "\n## Figures\n\n" + figures_md;
   write_file_atomic(opt.out / "report.md", report);
   say(fmt::format("report written to {}", (opt.out / "report.md").string()));

@@ -23,6 +23,7 @@ struct ReproduceOptions {
   std::string config;        ///< module config YAML (empty: defaults)
   std::string revision = "unknown";
   bool plots = true;         ///< draw the figures (matplotlib)
+  bool beyond = true;        ///< the "beyond the thesis" part: self-teaching, baselines, noise
 };
 
 /// Runs everything; `log` gets one line per step (progress). Throws InputError/IoError naming a

@@ -68,14 +68,9 @@ class Planner {
   /// Re-estimates the launch relation from `putts` and refits the residual GPs to `labels` plus
   /// the pseudo-labels of the putts that gave none near their target.
   void update(const std::vector<PuttRecord>& putts, std::vector<Label> labels) {
-    std::vector<double> bias, ratio;
-    for (const auto& p : putts)
-      if (p.hit && p.speed > 0.0) {
-        bias.push_back(p.launch_angle - p.angle);
-        ratio.push_back(p.launch_speed / p.speed);
-      }
-    bias_ = median(bias, 0.0);
-    ratio_ = median(ratio, kElasticRatio);
+    const auto relation = launch_relation(putts);
+    bias_ = relation[0];
+    ratio_ = relation[1];
     const std::size_t real = labels.size();
     for (std::size_t i = 0; i < putts.size(); ++i) {
       const auto& p = putts[i];
@@ -135,9 +130,7 @@ class Planner {
 
   /// The prior's club (angle, speed) for a hole.
   std::array<double, 2> prior(std::array<double, 2> hole) const {
-    const auto g = teacher::prior_launch(sys_.field(), hole, arrival_);
-    const double v = region_.learn_speed ? g.speed / ratio_ : region_.speed;
-    return {g.angle - bias_, v};
+    return prior_club(sys_.field(), region_, hole, arrival_, bias_, ratio_);
   }
 
   /// The putt for a hole, inside the module's envelope, and its uncertainty in window units.
@@ -193,6 +186,22 @@ double label_margin(const field::Situations& region) {
 }
 
 }  // namespace
+
+std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,
+                                 std::array<double, 2> hole, double arrival, double bias, double ratio) {
+  const auto g = teacher::prior_launch(field, hole, arrival);
+  return {g.angle - bias, region.learn_speed ? g.speed / ratio : region.speed};
+}
+
+std::array<double, 2> launch_relation(const std::vector<PuttRecord>& putts) {
+  std::vector<double> bias, ratio;
+  for (const auto& p : putts)
+    if (p.hit && p.speed > 0.0 && p.launch_speed > 0.0) {
+      bias.push_back(p.launch_angle - p.angle);
+      ratio.push_back(p.launch_speed / p.speed);
+    }
+  return {median(bias, 0.0), median(ratio, kElasticRatio)};
+}
 
 learning::Model model_from_labels(const system::System& system, const field::Situations& region,
                                   const std::vector<Label>& labels, int putts, std::uint64_t seed) {

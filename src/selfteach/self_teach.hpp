@@ -90,6 +90,15 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
 learning::Model model_from_labels(const system::System& system, const field::Situations& region,
                                   const std::vector<Label>& labels, int putts, std::uint64_t seed);
 
+/// The prior's club (angle [rad], speed [m/s]) for `hole`: aim at it, the launch speed that
+/// rolls there arriving at `arrival` [m/s] (teacher::prior_launch), mapped through the launch
+/// relation (launch angle - theta = `bias` [rad], launch speed / club speed = `ratio`); the
+/// region's fixed speed for angle-only regions.
+std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,
+                                 std::array<double, 2> hole, double arrival, double bias, double ratio);
+/// The launch relation (bias, ratio) measured on `putts` (medians; 0 and 1.6 before any).
+std::array<double, 2> launch_relation(const std::vector<PuttRecord>& putts);
+
 /// Plays the putt of `label` with the hole really at its position: did it sink? (The check of a
 /// hindsight label.)
 bool replay_label(const system::System& system, system::SystemData& data, const Label& label);

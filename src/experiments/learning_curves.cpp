@@ -1,0 +1,207 @@
+#include "experiments/learning_curves.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/csv.hpp"
+#include "core/error.hpp"
+#include "core/rng.hpp"
+#include "selfteach/crkr.hpp"
+#include "selfteach/self_teach.hpp"
+#include "system/parallel.hpp"
+
+namespace mg::experiments {
+
+std::string to_string(CurveLearner l) {
+  switch (l) {
+    case CurveLearner::kSelfTeach: return "self-teach";
+    case CurveLearner::kTeacherGpr: return "teacher-gpr";
+    case CurveLearner::kCrkr: return "crkr";
+  }
+  return "?";
+}
+
+void CurveOptions::validate() const {
+  if (checkpoints.empty()) throw InputError("learning curves: no checkpoints");
+  for (int c : checkpoints)
+    if (c < 1 || c > 100000) throw InputError(fmt::format("learning curves: checkpoint {}: expected 1..100000", c));
+  if (!std::is_sorted(checkpoints.begin(), checkpoints.end()))
+    throw InputError("learning curves: checkpoints must be increasing");
+  if (seeds < 1 || seeds > 1000) throw InputError(fmt::format("learning curves: seeds: expected 1..1000, got {}", seeds));
+  if (situations < 1 || situations > 100000)
+    throw InputError(fmt::format("learning curves: situations: expected 1..100000, got {}", situations));
+}
+
+namespace {
+
+EvaluateOptions test_options(const CurveOptions& o) {
+  EvaluateOptions e;
+  e.situations = o.situations;
+  e.seed = o.test_seed;
+  e.threads = 1;
+  e.oracle = false;
+  return e;
+}
+
+int play_model(const system::System& sys, const field::Situations& region, const learning::Model& m,
+               const CurveOptions& o) {
+  return evaluate_model(sys, m, region, test_options(o)).sunk;
+}
+
+CurveRun self_teach_run(const system::System& sys, const field::Situations& region, int run,
+                        const CurveOptions& o) {
+  selfteach::SelfTeachOptions so;
+  so.budget = o.checkpoints.back();
+  so.seed = derive_seed(o.seed, static_cast<std::uint64_t>(run));
+  so.threads = 1;
+  so.checkpoints = o.checkpoints;
+  const auto r = selfteach::self_teach(sys, region, so);
+  CurveRun c;
+  for (int k : o.checkpoints) {
+    int sunk = 0;
+    for (const auto& [putts, model] : r.checkpoint_models)
+      if (putts == k) sunk = play_model(sys, region, model, o);
+    c.putts.push_back(k);
+    c.sunk.push_back(sunk);
+  }
+  return c;
+}
+
+CurveRun teacher_run(const system::System& sys, const field::Situations& region, int run,
+                     const CurveOptions& o) {
+  system::SystemData data(sys);
+  const std::uint64_t seed = derive_seed(o.seed, static_cast<std::uint64_t>(run));
+  Rng rng(derive_seed(seed, 31));
+  std::vector<teacher::Example> found;
+  std::vector<int> spent_at;  // putts spent when example k was done
+  int spent = 0;
+  const int budget = o.checkpoints.back();
+  while (spent < budget) {
+    teacher::TeacherOptions t = o.teacher;
+    t.max_full_putts = std::min(t.max_full_putts, budget - spent);
+    const teacher::Example e = teacher::teach(sys, data, region.sample(rng), t);
+    spent += e.full_putts;
+    if (e.full_putts == 0) break;  // cannot happen (a budget >= 1 spends a putt); guards the loop
+    if (e.found) {
+      found.push_back(e);
+      spent_at.push_back(spent);
+    }
+  }
+  CurveRun c;
+  const auto inputs = region.learner_inputs();
+  const auto outputs = region.learner_outputs();
+  for (int k : o.checkpoints) {
+    std::vector<const teacher::Example*> use;
+    for (std::size_t i = 0; i < found.size(); ++i)
+      if (spent_at[i] <= k) use.push_back(&found[i]);
+    int sunk = 0;
+    if (use.size() >= 2) {
+      learning::Dataset d;
+      d.source = "teacher examples";
+      d.input_names = inputs;
+      d.output_names = outputs;
+      d.inputs.resize(static_cast<Eigen::Index>(use.size()), static_cast<Eigen::Index>(inputs.size()));
+      d.outputs.resize(static_cast<Eigen::Index>(use.size()), static_cast<Eigen::Index>(outputs.size()));
+      for (std::size_t i = 0; i < use.size(); ++i) {
+        const auto r = static_cast<Eigen::Index>(i);
+        for (std::size_t c2 = 0; c2 < inputs.size(); ++c2)
+          d.inputs(r, static_cast<Eigen::Index>(c2)) =
+              inputs[c2] == "xi_x" ? use[i]->hole[0] - sys.field().tee[0] : use[i]->hole[1] - sys.field().tee[1];
+        d.outputs(r, 0) = use[i]->angle;
+        if (outputs.size() > 1) d.outputs(r, 1) = use[i]->speed;
+      }
+      learning::TrainOptions to;
+      to.method = learning::Method::kGpr;
+      to.seed = seed;
+      learning::Model m = learning::train(d, to);
+      if (!region.learn_speed) m.fixed = {{"speed", region.speed}};
+      sunk = play_model(sys, region, m, o);
+    }
+    c.putts.push_back(k);
+    c.sunk.push_back(sunk);
+    c.examples = static_cast<int>(use.size());
+  }
+  return c;
+}
+
+CurveRun crkr_run(const system::System& sys, const field::Situations& region, int run,
+                  const CurveOptions& o) {
+  selfteach::CrkrOptions co;
+  co.budget = o.checkpoints.back();
+  co.seed = derive_seed(o.seed, static_cast<std::uint64_t>(run));
+  co.checkpoints = o.checkpoints;
+  const auto r = selfteach::crkr_learn(sys, region, co);
+  CurveRun c;
+  for (const auto& [k, policy] : r.checkpoint_policies) {
+    const Policy play = [&, &pol = policy](const std::vector<std::array<double, 2>>& holes) {
+      std::vector<Prediction> out;
+      for (const auto& h : holes) {
+        const auto a = pol.act(sys.field(), region, h);
+        out.push_back({a[0], a[1], 0.0, 0.0});
+      }
+      return out;
+    };
+    c.putts.push_back(k);
+    c.sunk.push_back(evaluate_policy(sys, play, region, test_options(o)).sunk);
+  }
+  return c;
+}
+
+}  // namespace
+
+std::vector<CurveRun> learning_curves(const system::System& system, const field::Situations& region,
+                                      CurveLearner learner, const CurveOptions& options,
+                                      const std::function<void(int, int)>& progress) {
+  options.validate();
+  std::vector<CurveRun> runs(static_cast<std::size_t>(options.seeds));
+  int done = 0;
+  system::parallel_for(
+      system, options.seeds, system::thread_count(options.threads),
+      [&](int i, system::SystemData&) {
+        CurveRun r = learner == CurveLearner::kSelfTeach    ? self_teach_run(system, region, i, options)
+                     : learner == CurveLearner::kTeacherGpr ? teacher_run(system, region, i, options)
+                                                            : crkr_run(system, region, i, options);
+        r.learner = learner;
+        r.run = i;
+        r.situations = options.situations;
+        runs[static_cast<std::size_t>(i)] = std::move(r);
+      },
+      [&](int) {
+        if (progress) progress(++done, options.seeds);
+      });
+  return runs;
+}
+
+std::string curves_csv(const std::vector<CurveRun>& runs) {
+  std::string out = "learner,run,putts,sunk,situations,success\n";
+  for (const auto& r : runs)
+    for (std::size_t k = 0; k < r.putts.size(); ++k)
+      out += fmt::format("{},{},{},{},{},{}\n", to_string(r.learner), r.run, r.putts[k], r.sunk[k], r.situations,
+                         static_cast<double>(r.sunk[k]) / r.situations);
+  return out;
+}
+
+CurveSummary summarize(const std::vector<CurveRun>& runs) {
+  CurveSummary s;
+  if (runs.empty()) return s;
+  s.putts = runs.front().putts;
+  const auto quantile = [](std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    const double pos = q * static_cast<double>(v.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(pos));
+    const std::size_t hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+  };
+  for (std::size_t k = 0; k < s.putts.size(); ++k) {
+    std::vector<double> v;
+    for (const auto& r : runs) v.push_back(static_cast<double>(r.sunk[k]) / r.situations);
+    s.median.push_back(quantile(v, 0.5));
+    s.q10.push_back(quantile(v, 0.1));
+    s.q90.push_back(quantile(v, 0.9));
+  }
+  return s;
+}
+
+}  // namespace mg::experiments

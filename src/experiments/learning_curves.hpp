@@ -1,0 +1,62 @@
+#pragma once
+/// Learning curves (issue 10): success on the same random test situations against the
+/// full-system putts a learner has spent, misses included, for
+///   self-teach    the robot alone (selfteach::self_teach);
+///   teacher-gpr   the thesis protocol: the teacher collects examples at random situations of the
+///                 region, one after another, every full-system putt it spends counted (its
+///                 ball-only proposals are not: the thesis does not count a person's thinking);
+///                 GPR on the examples found so far;
+///   crkr          Cost-regularized Kernel Regression (selfteach/crkr.hpp).
+/// A run per seed; at each checkpoint the learner as it stood is played on `situations` test
+/// situations (evaluate_policy, seed `test_seed`, no noise). Runs go in parallel (one per thread);
+/// the same bits for any thread count.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "experiments/evaluate.hpp"
+#include "field/situations.hpp"
+#include "system/system.hpp"
+
+namespace mg::experiments {
+
+enum class CurveLearner { kSelfTeach, kTeacherGpr, kCrkr };
+std::string to_string(CurveLearner l);  ///< "self-teach", "teacher-gpr", "crkr"
+
+struct CurveOptions {
+  std::vector<int> checkpoints{10, 25, 50, 100, 150};  ///< putts spent
+  int seeds = 10;                    ///< runs (seed 1..seeds derived from `seed`)
+  int situations = 100;              ///< test situations per checkpoint
+  std::uint64_t seed = 1;
+  std::uint64_t test_seed = 7;
+  int threads = 0;
+  teacher::TeacherOptions teacher;   ///< teacher-gpr
+  void validate() const;
+};
+
+struct CurveRun {
+  CurveLearner learner = CurveLearner::kSelfTeach;
+  int run = 0;                       ///< 0..seeds-1
+  std::vector<int> putts;            ///< the checkpoints
+  std::vector<int> sunk;             ///< test situations sunk at each (0 without a model yet)
+  int situations = 0;
+  int examples = 0;                  ///< teacher-gpr: examples found within the last checkpoint
+};
+
+std::vector<CurveRun> learning_curves(const system::System& system, const field::Situations& region,
+                                      CurveLearner learner, const CurveOptions& options,
+                                      const std::function<void(int, int)>& progress = {});
+
+/// CSV: learner,run,putts,sunk,situations,success.
+std::string curves_csv(const std::vector<CurveRun>& runs);
+
+/// Median and 10 / 90 % quantiles of the success ratio over runs at each checkpoint (linear
+/// interpolation between order statistics).
+struct CurveSummary {
+  std::vector<int> putts;
+  std::vector<double> median, q10, q90;
+};
+CurveSummary summarize(const std::vector<CurveRun>& runs);
+
+}  // namespace mg::experiments
