@@ -182,10 +182,11 @@ void add_collect(CLI::App& app) {
 void add_evaluate(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string model, situations_spec, rows, strategy;
+    std::string model, situations_spec, rows, strategy, save_model;
     int situations = 30;
     std::uint64_t seed = 1;
-    bool json = false, no_oracle = false;
+    bool json = false, no_oracle = false, learn = false;
+    double perception_noise = 0.0, torque_noise = 0.0;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("evaluate", "The robot plays random test situations with a learned model (thesis 6.3)");
@@ -200,7 +201,12 @@ void add_evaluate(CLI::App& app) {
   cmd->add_flag("--no-oracle", a->no_oracle, "Skip the oracle ceiling (the teacher on every situation)");
   cmd->add_flag("--json", a->json, "Print one JSON object");
   cmd->add_option("-o,--output", a->rows, "Also write one CSV row per situation here");
+  cmd->add_flag("--learn", a->learn, "Keep learning while playing: each putt's hindsight labels join the GPR model (implies --no-oracle)");
+  cmd->add_option("--save-model", a->save_model, "With --learn: write the model as it ends up here");
+  cmd->add_option("--perception-noise", a->perception_noise, "Std [m] of the perceived hole and ball positions, per axis");
+  cmd->add_option("--torque-noise", a->torque_noise, "Joint torque noise std, fraction of the limits");
   cmd->callback([a] {
+    if (!a->save_model.empty() && !a->learn) throw InputError("--save-model: only with --learn");
     const learning::Model model = learning::load_model(a->model);
     experiments::check_playable_model(model, a->model);
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
@@ -211,9 +217,24 @@ void add_evaluate(CLI::App& app) {
     o.threads = a->sys.threads;
     o.oracle = !a->no_oracle;
     o.teacher = teacher_options(region, a->strategy);
+    o.perception_noise = a->perception_noise;
+    o.torque_noise = a->torque_noise;
+    if (a->learn) o.oracle = false;
     Progress bar("evaluate", a->situations);
-    const auto e = experiments::evaluate_model(sys, model, region, o, [&](int done, int) { bar.update(done); });
+    experiments::Evaluation e;
+    std::vector<int> labels_added;
+    if (a->learn) {
+      auto le = experiments::evaluate_learning(sys, model, region, o, [&](int done, int) { bar.update(done); });
+      e = std::move(le.evaluation);
+      labels_added = std::move(le.labels_added);
+      if (!a->save_model.empty()) learning::save_model(le.learned, a->save_model);
+    } else {
+      e = experiments::evaluate_model(sys, model, region, o, [&](int done, int) { bar.update(done); });
+    }
     bar.finish();
+    int first_half = 0, second_half = 0, added = 0;
+    for (std::size_t i = 0; i < e.rows.size(); ++i) (2 * i < e.rows.size() ? first_half : second_half) += e.rows[i].sunk;
+    for (int k : labels_added) added += k;
     if (!a->rows.empty()) write_file_atomic(a->rows, experiments::evaluation_csv(e, sys.field()));
     if (a->json) {
       nlohmann::json rows = nlohmann::json::array();
@@ -236,6 +257,8 @@ void add_evaluate(CLI::App& app) {
           {"ci95", e.ci95},
           {"oracle_ceiling", o.oracle ? nlohmann::json(e.oracle_ceiling) : nlohmann::json()},
           {"oracle_found", o.oracle ? nlohmann::json(e.oracle_found) : nlohmann::json()},
+          {"learn", a->learn},
+          {"labels_added", a->learn ? nlohmann::json(labels_added) : nlohmann::json()},
           {"rows", rows}};
       fmt::print("{}\n", j.dump());
       return;
@@ -246,6 +269,9 @@ void add_evaluate(CLI::App& app) {
                o.oracle ? fmt::format("; oracle ceiling {:.1f} % ({} of {})", 100.0 * e.oracle_ceiling, e.oracle_found,
                                       a->situations)
                         : "");
+    if (a->learn)
+      fmt::print("learning while playing: {} hindsight labels added; first half sunk {} of {}, second half {} of {}\n", added,
+                 first_half, (e.rows.size() + 1) / 2, second_half, e.rows.size() / 2);
   });
 }
 

@@ -9,6 +9,8 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "selfteach/hindsight.hpp"
+#include "stats/gpr.hpp"
 #include "system/parallel.hpp"
 
 namespace mg::experiments {
@@ -150,6 +152,99 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
   e.oracle_ceiling = options.oracle ? static_cast<double>(e.oracle_found) / n
                                     : std::numeric_limits<double>::quiet_NaN();
   return e;
+}
+
+LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
+                                     const field::Situations& region, const EvaluateOptions& options,
+                                     const std::function<void(int, int)>& progress) {
+  check_playable_model(model, "model");
+  if (model.method != learning::Method::kGpr)
+    throw InputError(fmt::format("--learn: needs a GPR model (a {} model keeps no training data to add to)",
+                                 learning::method_name(model.method)));
+  options.validate();
+  if (options.perception_noise > 0.0 || options.oracle)
+    throw InputError("--learn: plays without perception noise and without the oracle");
+  const auto& field = system.field();
+  const int ia = output_index(model, "angle"), is = output_index(model, "speed");
+  selfteach::HindsightRules rules;
+  rules.learn_speed = is >= 0;
+  rules.arrival_speed = teacher::arrival_speed(field, options.teacher.strategy);
+  const auto b = selfteach::region_bounds(region);
+  const double margin = 0.05 + 0.25 * std::max(b[1] - b[0], b[3] - b[2]);
+  const double hole_radius = 0.5 * field.hole.diameter;
+  const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
+  const auto holes = region.sample(options.situations, options.seed);
+
+  LearningEvaluation out;
+  out.learned = model;
+  Evaluation& e = out.evaluation;
+  e.rows.resize(holes.size());
+  system::SystemData data(system);
+  const auto& c = system.config();
+  const int n = static_cast<int>(holes.size());
+  Rng rng(derive_seed(options.seed, 17));
+  std::vector<Eigen::Index> tuned_at;
+  for (const auto& gp : model.gps) tuned_at.push_back(gp.size());
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    SituationResult& r = e.rows[k];
+    r.hole = holes[k];
+    r.predicted = predict_hits(out.learned, field, {r.hole})[0];
+    const double a = r.predicted.angle, v = r.predicted.speed;
+    r.in_envelope = std::isfinite(a) && std::isfinite(v) && a >= c.angle_min && a <= c.angle_max &&
+                    v >= c.speed_min && v <= c.speed_max;
+    int added = 0;
+    if (r.in_envelope) {
+      control::FullPuttOptions po;
+      po.record_interval = 0.005;
+      if (options.torque_noise > 0.0) {
+        po.torque_noise = options.torque_noise;
+        po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
+      }
+      control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
+      r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
+      if (p.hit) {
+        const auto labels = selfteach::hindsight_labels(p.outcome.trajectory, r.hole, hole_radius, rolling_decel,
+                                                        region, margin, a, v, i, rules);
+        for (const auto& l : labels) {
+          Eigen::VectorXd x(out.learned.num_inputs());
+          for (int col = 0; col < out.learned.num_inputs(); ++col) {
+            const auto& name = out.learned.input_names[static_cast<std::size_t>(col)];
+            x(col) = name == "xi_x" ? l.hole[0] - field.tee[0] : name == "xi_y" ? l.hole[1] - field.tee[1]
+                     : name == "hole_x" ? l.hole[0] : l.hole[1];
+          }
+          for (int o = 0; o < out.learned.num_outputs(); ++o) {
+            stats::GpModel& gp = out.learned.gps[static_cast<std::size_t>(o)];
+            Eigen::MatrixXd xs(gp.inputs.rows() + 1, gp.inputs.cols());
+            xs << gp.inputs, x.transpose();
+            Eigen::VectorXd ys(gp.targets.size() + 1);
+            ys << gp.targets, (o == ia ? l.angle : o == is ? l.speed : std::nan(""));
+            if (!std::isfinite(ys(ys.size() - 1))) continue;  // an output the labels do not give
+            // Hyperparameters re-tuned whenever the data has grown by a third since they were.
+            auto& at = tuned_at[static_cast<std::size_t>(o)];
+            if (ys.size() >= at + std::max<Eigen::Index>(1, at / 3)) {
+              stats::GprOptions go;
+              go.restarts = 3;
+              gp = stats::fit_gpr(xs, ys, rng, go);
+              at = ys.size();
+            } else {
+              gp = stats::make_gp_model(xs, ys, gp.hyper);
+            }
+          }
+          ++added;
+        }
+      }
+      p.outcome.trajectory.clear();
+      r.outcome = std::move(p.outcome);
+    }
+    out.labels_added.push_back(added);
+    if (progress) progress(i + 1, n);
+  }
+  for (const auto& r : e.rows) e.sunk += r.sunk;
+  e.success_ratio = static_cast<double>(e.sunk) / n;
+  e.ci95 = wilson_interval(e.sunk, n);
+  e.oracle_ceiling = std::numeric_limits<double>::quiet_NaN();
+  return out;
 }
 
 std::string evaluation_csv(const Evaluation& e, const field::Field& field) {

@@ -81,6 +81,21 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
                           const field::Situations& region, const EvaluateOptions& options,
                           const std::function<void(int, int)>& progress = {});
 
+/// Incremental improvement (thesis chapter 7): the situations are played one after another and
+/// after each putt its hindsight labels (selfteach/hindsight.hpp; the arrival speed of the
+/// region's strategy) join the GPR model's data (hyperparameters re-tuned by marginal likelihood
+/// whenever the data has grown by a third, else kept), so the next situation is played with everything seen so far. Only GPR models keep
+/// their data: others are an InputError. `learned` gets the final model. One thread: each putt
+/// depends on the ones before; deterministic.
+struct LearningEvaluation {
+  Evaluation evaluation;          ///< rows in play order
+  std::vector<int> labels_added;  ///< per situation
+  learning::Model learned;
+};
+LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
+                                     const field::Situations& region, const EvaluateOptions& options,
+                                     const std::function<void(int, int)>& progress = {});
+
 /// CSV, one row per situation: hole_x,hole_y,xi_x,xi_y,angle,speed,angle_std,speed_std,
 /// in_envelope,sunk,closest_approach,rest_x,rest_y,oracle_found,oracle_full_putts,oracle_ball_putts.
 std::string evaluation_csv(const Evaluation& e, const field::Field& field);

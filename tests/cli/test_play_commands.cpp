@@ -93,10 +93,36 @@ TEST(PlayCommands, BadInputsGetOneLineAndExitTwo) {
     EXPECT_NE(r.err.find("minigolf: error: collect: no sinking putt in any of the 2 situations"), std::string::npos) << r.err;
     EXPECT_NE(slurp(out).find("# unplayable: index=1"), std::string::npos);  // the attempts are kept
   }
+  {  // self-teach: a bad budget, and a region no putt reaches (progress lines, then one error line)
+    expect_one_line_error("self-teach --field flat --budget 0 -o " + model.string(), "budget: expected 1..100000");
+    expect_one_line_error("self-teach --field flat --budget -3 -o " + model.string(), "budget: expected 1..100000");
+    expect_one_line_error("self-teach --field nowhere --budget 3 -o " + model.string(), "unknown field");
+    const auto r = run_minigolf("self-teach --field flat --situations line:2.64,-0.1:2.64,0.1:2 --budget 3 -o " + model.string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("minigolf: error: self-teach: field 'flat': 0 hindsight label(s)"), std::string::npos) << r.err;
+    expect_one_line_error("evaluate --field flat --model " + model.string() + " --save-model " + out.string(), "only with --learn");
+  }
   fs::remove(data);
   fs::remove(model);
   fs::remove_all(temp("r"));
   fs::remove(out);
+}
+
+TEST(PlayCommands, SelfTeachWritesAModelThatEvaluateAndPredictPlayUnchanged) {
+  const auto model = temp("self.json"), log = temp("self.csv");
+  auto r = run_minigolf("self-teach --field flat --budget 6 --seed 2 --log " + log.string() + " -o " + model.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("self-taught flat in 6 full-system putts"), std::string::npos) << r.out;
+  EXPECT_EQ(count_lines(slurp(log)), 7);  // header + one row per putt
+  r = run_minigolf("evaluate --field flat --model " + model.string() + " --situations 10 --no-oracle --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_GE(j["sunk"].get<int>(), 8) << r.out;  // measured 10 of 10
+  r = run_minigolf("evaluate --field flat --model " + model.string() + " --situations 4 --learn --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["labels_added"].size(), 4u);
+  fs::remove(model);
+  fs::remove(log);
 }
 
 }  // namespace
