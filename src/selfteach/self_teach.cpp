@@ -21,6 +21,8 @@ void SelfTeachOptions::validate() const {
     throw InputError(fmt::format("self-teach: batch: expected 1..64 putts per round, got {}", batch));
   if (candidates < 1 || candidates > 100000)
     throw InputError(fmt::format("self-teach: candidates: expected 1..100000, got {}", candidates));
+  if (!(arrival_speed >= 0.0 && arrival_speed <= 2.0))
+    throw InputError(fmt::format("self-teach: arrival speed: expected 0..2 m/s (0: the strategy's), got {}", arrival_speed));
   if (!(record_interval > 0.0 && record_interval <= 0.05))
     throw InputError(fmt::format("self-teach: record_interval: expected 0..0.05 s, got {}", record_interval));
   for (int c : checkpoints)
@@ -250,7 +252,9 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
   const auto& field = system.field();
   HindsightRules rules;
   rules.learn_speed = region.learn_speed;
-  rules.arrival_speed = teacher::arrival_speed(field, teacher::parse_strategy(region.strategy));
+  rules.arrival_speed = options.arrival_speed > 0.0
+                            ? options.arrival_speed
+                            : teacher::arrival_speed(field, teacher::parse_strategy(region.strategy));
   const double margin = label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
   const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;

@@ -44,6 +44,9 @@ struct SelfTeachOptions {
   int batch = 1;                  ///< putts chosen together per round (1..64), played in parallel
   int threads = 0;                ///< 0: all cores
   int candidates = 300;           ///< random candidate targets (plus centre and collection points)
+  /// [m/s] the arrival speed s* to learn (angle-and-speed regions); 0: the region's strategy's
+  /// (teacher::arrival_speed). robust_arrival_speed chooses one for a measured noise.
+  double arrival_speed = 0.0;
   double record_interval = 0.005; ///< [s] ball path sampling
   /// Putt counts after which the model is also trained and kept (learning curves); the model
   /// after k putts is the model a budget of k would give.
