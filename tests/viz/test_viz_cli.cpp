@@ -1,0 +1,141 @@
+// view | render | plot end to end (the built binary). Drawing tests need a display (xvfb-run).
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "../cli/run_command.hpp"
+#include "viz/image.hpp"
+#include "viz_test_util.hpp"
+
+namespace mg::viz {
+namespace {
+
+using cli::testing::count_lines;
+using cli::testing::run_minigolf;
+
+std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+void write(const std::filesystem::path& p, const std::string& text) {
+  std::ofstream f(p);
+  f << text;
+}
+
+TEST(ViewCliDisplay, ViewerRunsAScriptedHitAndQuits) {
+  MG_NEED_DISPLAY();
+  const auto dir = testing::temp_dir("view");
+  write(dir / "hit.txt", "speed 0.8\nhit\nwait 2.5\nstatus\nquit\n");
+  const auto shot = dir / "last.png";
+  const auto r = run_minigolf("view --field flat --size 320x240 --script " + q(dir / "hit.txt") +
+                              " --screenshot " + q(shot));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("Rest -> Hitting"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Hitting -> Braking: the ball was hit"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("bye"), std::string::npos) << r.out;
+  const Image img = read_png(shot);
+  EXPECT_EQ(img.width, 320);
+  EXPECT_EQ(img.height, 240);
+  long bright = 0;  // not a blank frame: the lit lane and the overlay text
+  for (std::size_t i = 0; i < img.rgb.size(); i += 3) bright += img.rgb[i + 1] > 60;
+  EXPECT_GT(bright, 320 * 240 / 10);
+}
+
+TEST(ViewCliDisplay, RenderWritesTheVideoAndTheFilmstrip) {
+  MG_NEED_DISPLAY();
+  const auto dir = testing::temp_dir("render_cli");
+  const auto r = run_minigolf("render --field flat --angle 0.05 --speed 0.8 --size 160x120 --fps 10 -o " + q(dir / "hit"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("filmstrip:"), std::string::npos) << r.out;
+  const Image strip = read_png(dir / "hit-filmstrip.png");
+  EXPECT_EQ(strip.height, 120);
+  EXPECT_EQ(strip.width, 5 * 160 + 16);
+  EXPECT_TRUE(std::filesystem::exists(dir / "hit.mp4") || std::filesystem::exists(dir / "hit-frames"));
+}
+
+TEST(ViewCli, WithoutADisplayViewAndRenderSayWhyInOneLine) {
+  // Unset DISPLAY for the child (env -u): as on a machine without a screen and without Xvfb.
+  for (const std::string cmd : {"view --field flat --script /dev/null",
+                                "render --field flat --angle 0 --speed 1 -o /tmp/mg_viz_nodisplay"}) {
+    const std::string full = "env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(MINIGOLF_BINARY) + " " + cmd +
+                             " 2>&1";
+    FILE* pipe = ::popen(full.c_str(), "r");
+    ASSERT_TRUE(pipe);
+    std::string out;
+    char buf[512];
+    while (std::fgets(buf, sizeof buf, pipe)) out += buf;
+    const int status = ::pclose(pipe);
+    EXPECT_TRUE(WIFEXITED(status)) << "crashed: " << out;
+    EXPECT_EQ(WEXITSTATUS(status), 1) << out;
+    EXPECT_EQ(count_lines(out), 1) << out;
+    EXPECT_NE(out.find("no display"), std::string::npos) << out;
+    EXPECT_NE(out.find("xvfb-run"), std::string::npos) << out;
+  }
+}
+
+TEST(ViewCli, RenderRejectsBadRequestsBeforeDrawing) {
+  for (const std::string args : {"--field flat --angle 0 -o /tmp/x", "--field flat --angle 0 --speed 1 --size 321x240 -o /tmp/x",
+                                 "--field flat --angle 0 --speed 1 --camera nowhere -o /tmp/x",
+                                 "--field nowhere --angle 0 --speed 1 -o /tmp/x"}) {
+    const auto r = run_minigolf("render " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  }
+}
+
+/// A shipped data file, by absolute path (the tests run in the build folder).
+std::string shipped(const std::string& rel) { return q(std::string(MINIGOLF_TEST_DATA_DIR) + "/../../data/" + rel); }
+
+bool nonempty_png(const std::filesystem::path& p) {
+  const Image img = read_png(p);
+  return img.width > 100 && img.height > 100;
+}
+
+TEST(PlotCli, DsAndStrengthFiguresOfTheShippedModel) {
+  const auto dir = testing::temp_dir("plot_ds");
+  auto r = run_minigolf("plot ds -o " + q(dir / "ds.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(nonempty_png(dir / "ds.png"));
+  r = run_minigolf("plot ds --plane xy --data-dir " + q(dir / "data") + " -o " + q(dir / "ds_xy.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "data" / "ds_gmm.csv"));
+  r = run_minigolf("plot strength -o " + q(dir / "strength.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(nonempty_png(dir / "strength.png"));
+}
+
+TEST(PlotCli, FieldAndModelFigures) {
+  const auto dir = testing::temp_dir("plot_field");
+  auto r = run_minigolf("plot field --field regular-hill --shot 0.05,1.2 --shot -0.05,1.4 -o " + q(dir / "field.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(nonempty_png(dir / "field.png"));
+  r = run_minigolf("train " + shipped("datasets/flat.csv") + " --inputs xi_y --outputs angle --restarts 2 -o " + q(dir / "m.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_minigolf("plot model --model " + q(dir / "m.json") + " --data " + shipped("datasets/flat.csv") + " --validation " +
+                   shipped("datasets/flat-validation.csv") + " -o " + q(dir / "model.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(nonempty_png(dir / "model.png"));
+}
+
+TEST(PlotCli, MissingOrBrokenInputsAreOneLineExitTwo) {
+  const auto dir = testing::temp_dir("plot_bad");
+  write(dir / "broken.csv", "demo,t,x,y,z,vx,vy,vz\n0,0,abc,0,0,0,0,0\n");
+  write(dir / "broken.json", "{\"priors\": [");
+  const std::string data = std::string(MINIGOLF_TEST_DATA_DIR) + "/learning/";
+  for (const std::string args :
+       {"ds --demos /nonexistent.csv -o " + q(dir / "a.png"), "ds --demos " + q(dir / "broken.csv") + " -o " + q(dir / "a.png"),
+        "ds --hitting-model " + q(dir / "broken.json") + " -o " + q(dir / "a.png"),
+        "ds --plane yz -o " + q(dir / "a.png"), "strength --speeds 1,abc -o " + q(dir / "a.png"),
+        "strength --hitting-model /nonexistent.json -o " + q(dir / "a.png"),
+        "field --field nowhere -o " + q(dir / "a.png"), "field --field flat --shot 0,nan -o " + q(dir / "a.png"),
+        "field --field flat --hole 99,0 -o " + q(dir / "a.png"),
+        "model --model /nonexistent.json --data " + shipped("datasets/flat.csv") + " -o " + q(dir / "a.png"),
+        "model --model " + q(data + "truncated_model.json") + " --data " + shipped("datasets/flat.csv") + " -o " + q(dir / "a.png"),
+        "model --model " + q(dir / "broken.json") + " --data " + shipped("datasets/flat.csv") + " -o " + q(dir / "a.png")}) {
+    const auto r = run_minigolf("plot " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "a.png")) << args;
+  }
+}
+
+}  // namespace
+}  // namespace mg::viz
