@@ -58,6 +58,7 @@ void add_view(CLI::App& app) {
   cmd->add_option("--screenshot", a->screenshot, "Write the last frame here (PNG) when the session ends");
   cmd->callback([a] {
     const control::ModuleConfig config = system::load_config(a->config, a->field);
+    { const system::System check(config); }  // the field and the models load (and fail) before the window
     check_camera(a->camera);
     viz::ViewerOptions o;
     o.realtime = a->realtime;
@@ -112,9 +113,12 @@ void add_render(CLI::App& app) {
     ro.video = !a->no_video;
     if (ro.width % 2 != 0 || ro.height % 2 != 0)
       throw InputError(fmt::format("--size {}: width and height must be even (video)", a->size));
+    viz::validate(req);
+    const system::System sys(config);  // the field and the models load (and fail) before drawing
+    if (req.angle) sys.check_request(*req.angle, *req.speed, "render");
+    if (req.hole) field::check_hole_position(sys.field(), *req.hole);
     viz::GlWindow window(64, 64, false, "minigolf render");  // before the run: no display fails fast
     const viz::HitRecording rec = viz::record_hit(config, req);
-    const system::System sys(config);
     const viz::RenderOutputs out = viz::render_hit(sys.arm_world(), rec, ro, stem);
     const auto& o = *rec.outcome;
     fmt::print("hit: angle {:.4f} rad, speed {:.4f} m/s, hole ({:.3f}, {:.3f}): ball {} at ({:.3f}, {:.3f})\n",

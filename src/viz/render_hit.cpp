@@ -59,6 +59,7 @@ class HitObserver final : public system::SessionObserver {
     previous_.qpos.assign(v.d->qpos, v.d->qpos + m->nq);
     previous_.mocap_pos.assign(v.d->mocap_pos, v.d->mocap_pos + 3 * m->nmocap);
     previous_.mocap_quat.assign(v.d->mocap_quat, v.d->mocap_quat + 4 * m->nmocap);
+    previous_.userdata.assign(v.d->userdata, v.d->userdata + m->nuserdata);
   }
 
   std::vector<Pose> frames, hit_poses;
@@ -93,8 +94,7 @@ void check_answer(const std::string& log, std::size_t from, const std::string& l
 
 }  // namespace
 
-HitRecording record_hit(const control::ModuleConfig& config, const HitRequest& request,
-                        bool record_poses) {
+void validate(const HitRequest& request) {
   if (!(request.fps >= 1.0 && request.fps <= 240.0))
     throw InputError(fmt::format("render: --fps {}: expected 1..240", request.fps));
   const bool manual = request.angle.has_value() || request.speed.has_value();
@@ -102,6 +102,12 @@ HitRecording record_hit(const control::ModuleConfig& config, const HitRequest& r
     throw InputError("render: give either --angle and --speed, or --model");
   if (manual && !(request.angle && request.speed))
     throw InputError("render: --angle and --speed go together");
+}
+
+HitRecording record_hit(const control::ModuleConfig& config, const HitRequest& request,
+                        bool record_poses) {
+  validate(request);
+  const bool manual = request.angle.has_value() || request.speed.has_value();
   HitObserver observer(request.fps);
   std::ostringstream out;
   system::SessionOptions options;
@@ -183,8 +189,8 @@ RenderOutputs render_hit(const sim::World& world, const HitRecording& rec, const
                                  options.width, options.height));
   if (rec.frames.empty() || rec.stages.empty()) throw Error("render: nothing recorded");
   Renderer renderer(world, options.width, options.height);
+  renderer.set_pose(rec.stages.front().pose);  // the run's hole, for the camera
   mjvCamera camera = camera_preset(options.camera, world, renderer.data());
-  // The hole of the run (the renderer's data has the field's default until a pose is copied).
   RenderOutputs result;
   const std::string stem = out.string();
   result.filmstrip = stem + "-filmstrip.png";

@@ -47,6 +47,9 @@ struct HitRequest {
   double max_time = 40.0;      ///< [s] give up
 };
 
+/// InputError for an incomplete or contradictory request (fps, angle/speed/model).
+void validate(const HitRequest& request);
+
 /// Runs the session in lockstep and records the hit. `record_poses` false: the same run without
 /// an observer (for the bit-identity test). Throws InputError for a bad request (envelope,
 /// hole), Error if the hit never happened.

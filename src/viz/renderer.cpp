@@ -82,6 +82,7 @@ Pose capture_pose(const mjModel* m, const mjData* d) {
   p.qpos.assign(d->qpos, d->qpos + m->nq);
   p.mocap_pos.assign(d->mocap_pos, d->mocap_pos + 3 * m->nmocap);
   p.mocap_quat.assign(d->mocap_quat, d->mocap_quat + 4 * m->nmocap);
+  p.userdata.assign(d->userdata, d->userdata + m->nuserdata);
   return p;
 }
 
@@ -90,6 +91,7 @@ void copy_pose(const mjModel* m, const mjData* src, mjData* dst) {
   std::memcpy(dst->qpos, src->qpos, sizeof(mjtNum) * static_cast<std::size_t>(m->nq));
   std::memcpy(dst->mocap_pos, src->mocap_pos, sizeof(mjtNum) * 3 * static_cast<std::size_t>(m->nmocap));
   std::memcpy(dst->mocap_quat, src->mocap_quat, sizeof(mjtNum) * 4 * static_cast<std::size_t>(m->nmocap));
+  std::memcpy(dst->userdata, src->userdata, sizeof(mjtNum) * static_cast<std::size_t>(m->nuserdata));
 }
 
 const std::vector<std::string>& camera_names() {
@@ -107,12 +109,12 @@ mjvCamera camera_preset(const std::string& name, const sim::World& world, const 
   mjv_defaultCamera(&c);
   c.type = mjCAMERA_FREE;
   if (name == "overview") {
-    c.lookat[0] = tx + 0.45 * (hole[0] - tx);
-    c.lookat[1] = ty + 0.45 * (hole[1] - ty) + 0.2;
-    c.lookat[2] = f.height(c.lookat[0], c.lookat[1]) + 0.2;
-    c.distance = 1.1 * length + 1.0;
-    c.azimuth = dir * 180.0 / kPi - 35.0;
-    c.elevation = -28.0;
+    c.lookat[0] = tx + 0.35 * (hole[0] - tx);
+    c.lookat[1] = ty + 0.35 * (hole[1] - ty) + 0.3;
+    c.lookat[2] = f.height(c.lookat[0], c.lookat[1]) + 0.25;
+    c.distance = 0.9 * length + 1.5;
+    c.azimuth = dir * 180.0 / kPi + 50.0;  // from behind the tee, on the side away from the arm
+    c.elevation = -25.0;
   } else if (name == "side") {
     c.lookat[0] = tx + 0.1;
     c.lookat[1] = ty + 0.3;
@@ -171,6 +173,7 @@ void Renderer::set_pose(const Pose& pose) {
   std::copy(pose.qpos.begin(), pose.qpos.end(), d_->qpos);
   std::copy(pose.mocap_pos.begin(), pose.mocap_pos.end(), d_->mocap_pos);
   std::copy(pose.mocap_quat.begin(), pose.mocap_quat.end(), d_->mocap_quat);
+  std::copy(pose.userdata.begin(), pose.userdata.end(), d_->userdata);
 }
 
 void Renderer::update_scene(mjvCamera& camera, const Decorations& deco) {

@@ -34,13 +34,14 @@ class GlWindow {
   GLFWwindow* window_ = nullptr;
 };
 
-/// The pose of a simulation (what drawing needs): time, joint positions, mocap bodies.
+/// The pose of a simulation (what drawing needs): time, joint positions, mocap bodies, and the
+/// user data (the world keeps the hole position there).
 struct Pose {
   double time = 0.0;
-  std::vector<mjtNum> qpos, mocap_pos, mocap_quat;
+  std::vector<mjtNum> qpos, mocap_pos, mocap_quat, userdata;
 };
 Pose capture_pose(const mjModel* m, const mjData* d);
-/// Copies qpos, mocap and time of `src` into `dst` (same model layout); no allocation.
+/// Copies qpos, mocap, user data and time of `src` into `dst` (same model layout); no allocation.
 void copy_pose(const mjModel* m, const mjData* src, mjData* dst);
 
 /// What is drawn on top of the model.

@@ -5,6 +5,7 @@
 
 #include "core/csv.hpp"
 #include "ds/hitting_ds.hpp"
+#include "core/error.hpp"
 #include "system/system.hpp"
 #include "viz/figure_data.hpp"
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/error.hpp"
 #include "system/system.hpp"
 #include "viz/render_hit.hpp"
 #include "viz/renderer.hpp"
@@ -37,7 +38,9 @@ TEST(RecordHit, RecordingDoesNotChangeTheSimulation) {
   const char* names[] = {"rest", "acceleration", "impact", "braking", "idle"};
   for (std::size_t k = 0; k < 5; ++k) {
     EXPECT_EQ(with.stages[k].name, names[k]);
-    if (k > 0) EXPECT_GT(with.stages[k].pose.time, with.stages[k - 1].pose.time);
+    if (k > 0) {
+      EXPECT_GT(with.stages[k].pose.time, with.stages[k - 1].pose.time);
+    }
   }
   EXPECT_GT(with.frames.size(), 20u);  // 10 fps over the rest approach, the hit and the roll
   EXPECT_GT(with.ball_path.size(), 10u);
@@ -73,6 +76,21 @@ bool white_near(const Image& img, double u, double v, int radius) {
   return false;
 }
 
+/// Centroid of the ball-white pixels within `radius` of (u, v); nullopt if there are none.
+std::optional<std::array<double, 2>> white_centroid(const Image& img, double u, double v, int radius) {
+  double su = 0, sv = 0;
+  int n = 0;
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const int x = static_cast<int>(std::lround(u)) + dx, y = static_cast<int>(std::lround(v)) + dy;
+      if (x < 0 || y < 0 || x >= img.width || y >= img.height) continue;
+      const auto* p = img.pixel(x, y);
+      if (p[0] > 170 && p[1] > 170 && p[2] > 170) su += x + 0.5, sv += y + 0.5, ++n;
+    }
+  if (n == 0) return std::nullopt;
+  return std::array<double, 2>{su / n, sv / n};
+}
+
 std::array<double, 3> ball_of(const sim::World& world, const Pose& pose) {
   const auto i = static_cast<std::size_t>(world.ids().ball_qpos);
   return {pose.qpos[i], pose.qpos[i + 1], pose.qpos[i + 2]};
@@ -98,6 +116,11 @@ TEST(RenderDisplay, OffscreenImagesShowTheBallWhereTheSimulationHasIt) {
   ASSERT_GT((*at)[0], 0);
   ASSERT_LT((*at)[0], 320);
   EXPECT_TRUE(white_near(rest, (*at)[0], (*at)[1], 1)) << "ball at pixel " << (*at)[0] << "," << (*at)[1];
+  // The white blob around it is centred on the projection (the ball is about 6 pixels across).
+  const auto blob = white_centroid(rest, (*at)[0], (*at)[1], 8);
+  ASSERT_TRUE(blob);
+  EXPECT_LT(std::hypot((*blob)[0] - (*at)[0], (*blob)[1] - (*at)[1]), 1.5)
+      << "blob " << (*blob)[0] << "," << (*blob)[1] << " projection " << (*at)[0] << "," << (*at)[1];
   // 15 cm beside the ball there is lane, not ball: the check can fail.
   const auto off = r.project({ball[0], ball[1] - 0.15, ball[2]});
   ASSERT_TRUE(off);
@@ -139,7 +162,9 @@ TEST(RenderDisplay, RenderHitWritesAVideoAndAFilmstrip) {
   EXPECT_EQ(strip.width, 5 * 160 + 4 * 4);
   EXPECT_EQ(out.frames, static_cast<int>(rec.frames.size()));
   ASSERT_TRUE(std::filesystem::exists(out.video));
-  if (out.used_ffmpeg) EXPECT_GT(std::filesystem::file_size(out.video), 1000u);
+  if (out.used_ffmpeg) {
+    EXPECT_GT(std::filesystem::file_size(out.video), 1000u);
+  }
 }
 
 }  // namespace

@@ -51,11 +51,11 @@ TEST(ViewCliDisplay, RenderWritesTheVideoAndTheFilmstrip) {
   EXPECT_TRUE(std::filesystem::exists(dir / "hit.mp4") || std::filesystem::exists(dir / "hit-frames"));
 }
 
-TEST(ViewCli, WithoutADisplayViewAndRenderSayWhyInOneLine) {
+TEST(ViewCli, WithoutAScreenViewAndRenderSayWhyInOneLine) {
   // Unset DISPLAY for the child (env -u): as on a machine without a screen and without Xvfb.
-  for (const std::string cmd : {"view --field flat --script /dev/null",
+  for (const char* cmd : {"view --field flat --script /dev/null",
                                 "render --field flat --angle 0 --speed 1 -o /tmp/mg_viz_nodisplay"}) {
-    const std::string full = "env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(MINIGOLF_BINARY) + " " + cmd +
+    const std::string full = "env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(MINIGOLF_BINARY) + " " + std::string(cmd) +
                              " 2>&1";
     FILE* pipe = ::popen(full.c_str(), "r");
     ASSERT_TRUE(pipe);
@@ -72,10 +72,11 @@ TEST(ViewCli, WithoutADisplayViewAndRenderSayWhyInOneLine) {
 }
 
 TEST(ViewCli, RenderRejectsBadRequestsBeforeDrawing) {
-  for (const std::string args : {"--field flat --angle 0 -o /tmp/x", "--field flat --angle 0 --speed 1 --size 321x240 -o /tmp/x",
+  for (const char* args : {"--field flat --angle 0 -o /tmp/x", "--field flat --angle 0 --speed 1 --size 321x240 -o /tmp/x",
                                  "--field flat --angle 0 --speed 1 --camera nowhere -o /tmp/x",
-                                 "--field nowhere --angle 0 --speed 1 -o /tmp/x"}) {
-    const auto r = run_minigolf("render " + args);
+                                 "--field nowhere --angle 0 --speed 1 -o /tmp/x", "--field flat --angle 2 --speed 1 -o /tmp/x",
+                                  "--field flat --angle 0 --speed 1 --hole 9,9 -o /tmp/x"}) {
+    const auto r = run_minigolf("render " + std::string(args));
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
   }
@@ -120,7 +121,7 @@ TEST(PlotCli, MissingOrBrokenInputsAreOneLineExitTwo) {
   write(dir / "broken.csv", "demo,t,x,y,z,vx,vy,vz\n0,0,abc,0,0,0,0,0\n");
   write(dir / "broken.json", "{\"priors\": [");
   const std::string data = std::string(MINIGOLF_TEST_DATA_DIR) + "/learning/";
-  for (const std::string args :
+  for (const std::string& args :
        {"ds --demos /nonexistent.csv -o " + q(dir / "a.png"), "ds --demos " + q(dir / "broken.csv") + " -o " + q(dir / "a.png"),
         "ds --hitting-model " + q(dir / "broken.json") + " -o " + q(dir / "a.png"),
         "ds --plane yz -o " + q(dir / "a.png"), "strength --speeds 1,abc -o " + q(dir / "a.png"),
