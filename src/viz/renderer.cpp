@@ -118,10 +118,10 @@ mjvCamera camera_preset(const std::string& name, const sim::World& world, const 
   } else if (name == "side") {
     c.lookat[0] = tx + 0.1;
     c.lookat[1] = ty + 0.3;
-    c.lookat[2] = f.height(tx, ty) + 0.25;
-    c.distance = 2.0;
+    c.lookat[2] = f.height(tx, ty) + 0.4;
+    c.distance = 2.4;
     c.azimuth = 90.0;
-    c.elevation = -15.0;
+    c.elevation = -12.0;
   } else if (name == "top") {
     c.lookat[0] = 0.5 * (f.bounds[0] + f.bounds[1]);
     c.lookat[1] = 0.5 * (f.bounds[2] + f.bounds[3]) + 0.2;
@@ -215,7 +215,8 @@ void Renderer::update_scene(mjvCamera& camera, const Decorations& deco) {
 void Renderer::draw(mjrRect viewport, const Decorations& deco) {
   mjr_render(viewport, &scn_, &con_);
   if (!deco.label.empty())
-    mjr_overlay(mjFONT_BIG, mjGRID_TOPLEFT, viewport, deco.label.c_str(), nullptr, &con_);
+    mjr_overlay(viewport.width >= 600 ? mjFONT_BIG : mjFONT_NORMAL, mjGRID_TOPLEFT, viewport,
+                deco.label.c_str(), nullptr, &con_);
   if (!deco.overlay.empty())
     mjr_overlay(mjFONT_NORMAL, mjGRID_BOTTOMLEFT, viewport, deco.overlay.c_str(), nullptr, &con_);
 }

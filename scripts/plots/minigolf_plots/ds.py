@@ -27,7 +27,7 @@ def plot_ds(demos_path, gmm_path, field_path, png_path, plane="xz", target=None,
     gmm = read_csv(gmm_path, ["prior", "mx", "my", "mz", "cxx", "cxy", "cxz", "cyy", "cyz", "czz"])
     field = read_csv(field_path, ["a", "b", "u", "v", "speed"])
 
-    fig, ax = plt.subplots(figsize=(8, 5.5))
+    fig, ax = plt.subplots(figsize=(9, 5))
     a, b = field.numbers("a"), field.numbers("b")
     xs, ys, iy, ix = regular_grid(field, "a", "b", a, b)
     shape = (len(ys), len(xs))
@@ -37,7 +37,7 @@ def plot_ds(demos_path, gmm_path, field_path, png_path, plane="xz", target=None,
         raise PlotError(f"{field_path}: non-finite velocities")
     strm = ax.streamplot(xs, ys, u, v, color=speed, cmap="viridis", density=1.3, linewidth=0.8,
                          arrowsize=0.8)
-    fig.colorbar(strm.lines, ax=ax, label="DS speed in the plane [m/s]")
+    fig.colorbar(strm.lines, ax=ax, label="DS speed in the plane [m/s]", shrink=0.8)
 
     ids = demos.numbers("demo")
     pos = [demos.numbers(c) for c in "xyz"]
@@ -67,6 +67,7 @@ def plot_ds(demos_path, gmm_path, field_path, png_path, plane="xz", target=None,
     ax.set_aspect("equal")
     ax.legend(loc="upper left", fontsize=8)
     other = ({0, 1, 2} - {ia, ib}).pop()
-    ax.set_title(title or f"Hitting DS: demonstrations, GMM and streamlines "
-                          f"({plane} plane through x*, {axes[other]} = x*_{axes[other]})")
+    ax.set_title(title or f"hitting DS: demonstrations, GMM and streamlines "
+                          f"({plane} plane, {axes[other]} = x*_{axes[other]})", fontsize=10)
+    fig.tight_layout()
     save(fig, png_path)
