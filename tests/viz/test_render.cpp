@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "core/error.hpp"
@@ -164,6 +165,17 @@ TEST(RenderDisplay, RenderHitWritesAVideoAndAFilmstrip) {
   ASSERT_TRUE(std::filesystem::exists(out.video));
   if (out.used_ffmpeg) {
     EXPECT_GT(std::filesystem::file_size(out.video), 1000u);
+    // The MP4 holds every frame at the requested size (ffprobe, from the same Debian package,
+    // decodes it).
+    const std::string probe = "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+                              "stream=width,height,nb_read_frames -of csv=p=0 '" + out.video.string() + "' 2>&1";
+    FILE* pipe = ::popen(probe.c_str(), "r");
+    ASSERT_TRUE(pipe);
+    char buf[256] = {};
+    const bool got = std::fgets(buf, sizeof buf, pipe) != nullptr;
+    const int status = ::pclose(pipe);
+    ASSERT_TRUE(got && status == 0) << buf;
+    EXPECT_EQ(std::string(buf), "160,120," + std::to_string(out.frames) + "\n");
   }
 }
 

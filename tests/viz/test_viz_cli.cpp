@@ -13,6 +13,19 @@ namespace {
 using cli::testing::count_lines;
 using cli::testing::run_minigolf;
 
+/// run_minigolf with a prefix such as "env PATH=..." before the binary; stdout only (stderr to it).
+cli::testing::CommandResult run_minigolf_env(const std::string& prefix, const std::string& args) {
+  cli::testing::CommandResult r;
+  const std::string cmd = prefix + " " + std::string(MINIGOLF_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, pipe)) r.out += buf;
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
 std::string q(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 
 void write(const std::filesystem::path& p, const std::string& text) {
@@ -51,20 +64,30 @@ TEST(ViewCliDisplay, RenderWritesTheVideoAndTheFilmstrip) {
   EXPECT_TRUE(std::filesystem::exists(dir / "hit.mp4") || std::filesystem::exists(dir / "hit-frames"));
 }
 
+TEST(ViewCliDisplay, RenderWithoutFfmpegWritesPngFrames) {
+  MG_NEED_DISPLAY();
+  const auto dir = testing::temp_dir("render_noffmpeg");
+  const auto r = run_minigolf_env("env PATH=/nonexistent", "render --field flat --angle 0 --speed 0.8 --size 160x120 --fps 5 -o " +
+                                  q(dir / "hit"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("ffmpeg not found"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "hit.mp4"));
+  int frames = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "hit-frames")) {
+    const Image img = read_png(e.path());
+    EXPECT_EQ(img.width, 160);
+    ++frames;
+  }
+  EXPECT_GT(frames, 10);  // 5 fps over about 3 s of simulated time
+}
+
 TEST(ViewCli, WithoutAScreenViewAndRenderSayWhyInOneLine) {
   // Unset DISPLAY for the child (env -u): as on a machine without a screen and without Xvfb.
   for (const char* cmd : {"view --field flat --script /dev/null",
                                 "render --field flat --angle 0 --speed 1 -o /tmp/mg_viz_nodisplay"}) {
-    const std::string full = "env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(MINIGOLF_BINARY) + " " + std::string(cmd) +
-                             " 2>&1";
-    FILE* pipe = ::popen(full.c_str(), "r");
-    ASSERT_TRUE(pipe);
-    std::string out;
-    char buf[512];
-    while (std::fgets(buf, sizeof buf, pipe)) out += buf;
-    const int status = ::pclose(pipe);
-    EXPECT_TRUE(WIFEXITED(status)) << "crashed: " << out;
-    EXPECT_EQ(WEXITSTATUS(status), 1) << out;
+    const auto r = run_minigolf_env("env -u DISPLAY -u WAYLAND_DISPLAY", cmd);
+    const std::string& out = r.out;
+    EXPECT_EQ(r.exit_code, 1) << "crashed or wrong code: " << out;
     EXPECT_EQ(count_lines(out), 1) << out;
     EXPECT_NE(out.find("no display"), std::string::npos) << out;
     EXPECT_NE(out.find("xvfb-run"), std::string::npos) << out;
