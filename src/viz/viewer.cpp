@@ -7,6 +7,7 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -181,9 +182,20 @@ void run_viewer(const control::ModuleConfig& config, const ViewerOptions& option
     done = true;
   });
 
+  // The command thread must be joined whatever happens below.
+  struct JoinGuard {
+    system::Session& session;
+    std::thread& thread;
+    ~JoinGuard() {
+      session.interrupt();
+      if (thread.joinable()) thread.join();
+    }
+  } guard{session, commands};
+
   Decorations deco;
   deco.path.reserve(PathObserver::kCapacity);
   Image last;
+  auto next_frame = std::chrono::steady_clock::now();
   for (;;) {
     const bool closing = glfwWindowShouldClose(window.handle()) != 0;
     if (closing) session.interrupt();
@@ -204,6 +216,11 @@ void run_viewer(const control::ModuleConfig& config, const ViewerOptions& option
     glfwSwapBuffers(window.handle());
     glfwPollEvents();
     if (finished) break;
+    // At most 60 frames a second: a software GL (Xvfb) does not wait for a vertical retrace.
+    next_frame += std::chrono::microseconds(16667);
+    const auto now = std::chrono::steady_clock::now();
+    if (next_frame < now) next_frame = now;
+    std::this_thread::sleep_until(next_frame);
   }
   commands.join();
   if (!options.screenshot.empty()) {

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "system/session.hpp"
@@ -165,6 +166,27 @@ TEST(Session, ObserverSeesEveryStepAndPacingKeepsTheBits) {
     EXPECT_EQ(v.d->time, observer.last_time);
     EXPECT_FALSE(v.hit_armed);
   });
+}
+
+TEST(Session, InterruptEndsAPacedWaitAtItsNextTick) {
+  SessionOptions options;
+  options.paced = true;
+  std::ostringstream out;
+  Session session(ModuleConfig{}, options, out);
+  std::thread closer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    session.interrupt();  // as the viewer does when its window is closed
+  });
+  const auto start = std::chrono::steady_clock::now();
+  session.execute("wait 10");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  closer.join();
+  EXPECT_LT(wall, 2.0);
+  EXPECT_GT(session.time(), 0.1);
+  EXPECT_LT(session.time(), 2.0);
+  std::istringstream in("status\n");
+  session.run(in, false);  // interrupted: runs no further line
+  EXPECT_EQ(out.str().find("state Idle"), std::string::npos) << out.str();
 }
 
 TEST(Session, RecorderWritesOneRowPerRobotUpdate) {

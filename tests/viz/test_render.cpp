@@ -120,7 +120,10 @@ TEST(RenderDisplay, OffscreenImagesShowTheBallWhereTheSimulationHasIt) {
   // The white blob around it is centred on the projection (the ball is about 6 pixels across).
   const auto blob = white_centroid(rest, (*at)[0], (*at)[1], 8);
   ASSERT_TRUE(blob);
-  EXPECT_LT(std::hypot((*blob)[0] - (*at)[0], (*blob)[1] - (*at)[1]), 1.5)
+  const double offset = std::hypot((*blob)[0] - (*at)[0], (*blob)[1] - (*at)[1]);
+  std::printf("ball: projected (%.2f, %.2f), white blob centroid (%.2f, %.2f): %.2f px apart\n", (*at)[0], (*at)[1],
+              (*blob)[0], (*blob)[1], offset);
+  EXPECT_LT(offset, 1.5)
       << "blob " << (*blob)[0] << "," << (*blob)[1] << " projection " << (*at)[0] << "," << (*at)[1];
   // 15 cm beside the ball there is lane, not ball: the check can fail.
   const auto off = r.project({ball[0], ball[1] - 0.15, ball[2]});
