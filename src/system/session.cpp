@@ -330,11 +330,9 @@ void Session::run_for(double seconds) {
   if (options_.realtime) {
     const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                           std::chrono::duration<double>(seconds));
-    while (Clock::now() < until && !interrupted_.load()) {
+    while (Clock::now() < until && !interrupted_.load())  // the robot thread prints meanwhile
       std::this_thread::sleep_for(std::min<Clock::duration>(until - Clock::now(),
                                                             std::chrono::milliseconds(50)));
-      print_events();
-    }
     print_events();
     return;
   }
