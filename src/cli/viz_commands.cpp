@@ -114,6 +114,7 @@ void add_render(CLI::App& app) {
     if (ro.width % 2 != 0 || ro.height % 2 != 0)
       throw InputError(fmt::format("--size {}: width and height must be even (video)", a->size));
     viz::validate(req);
+    viz::check_render_outputs(stem);
     const system::System sys(config);  // the field and the models load (and fail) before drawing
     if (req.angle) sys.check_request(*req.angle, *req.speed, "render");
     if (req.hole) field::check_hole_position(sys.field(), *req.hole);

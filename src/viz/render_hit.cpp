@@ -168,6 +168,18 @@ HitRecording record_hit(const control::ModuleConfig& config, const HitRequest& r
   return rec;
 }
 
+void check_render_outputs(const std::filesystem::path& out) {
+  namespace fs = std::filesystem;
+  const fs::path dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw IoError(fmt::format("render: -o {}: no folder {}", out.string(), dir.string()));
+  for (const std::string suffix : {".mp4", "-filmstrip.png"}) {
+    const fs::path p = out.string() + suffix;
+    if (fs::exists(fs::symlink_status(p, ec)) && !fs::is_regular_file(fs::symlink_status(p, ec)))
+      throw IoError(fmt::format("render: {} exists and is not a regular file", p.string()));
+  }
+}
+
 std::filesystem::path find_ffmpeg() {
   const char* path = std::getenv("PATH");
   if (!path) return {};
@@ -188,6 +200,7 @@ RenderOutputs render_hit(const sim::World& world, const HitRecording& rec, const
     throw InputError(fmt::format("render: --size {}x{}: width and height must be even (video)",
                                  options.width, options.height));
   if (rec.frames.empty() || rec.stages.empty()) throw Error("render: nothing recorded");
+  check_render_outputs(out);
   Renderer renderer(world, options.width, options.height);
   renderer.set_pose(rec.stages.front().pose);  // the run's hole, for the camera
   mjvCamera camera = camera_preset(options.camera, world, renderer.data());

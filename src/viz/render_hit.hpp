@@ -75,6 +75,10 @@ struct RenderOutputs {
 RenderOutputs render_hit(const sim::World& world, const HitRecording& recording,
                          const RenderOptions& options, const std::filesystem::path& out);
 
+/// IoError unless the outputs of stem `out` can be written: its folder exists, and OUT.mp4 and
+/// OUT-filmstrip.png are regular files or absent (never replaced when they are something else).
+void check_render_outputs(const std::filesystem::path& out);
+
 /// ffmpeg on the PATH, or empty.
 std::filesystem::path find_ffmpeg();
 

@@ -98,11 +98,19 @@ TEST(ViewCli, RenderRejectsBadRequestsBeforeDrawing) {
   for (const char* args : {"--field flat --angle 0 -o /tmp/x", "--field flat --angle 0 --speed 1 --size 321x240 -o /tmp/x",
                                  "--field flat --angle 0 --speed 1 --camera nowhere -o /tmp/x",
                                  "--field nowhere --angle 0 --speed 1 -o /tmp/x", "--field flat --angle 2 --speed 1 -o /tmp/x",
-                                  "--field flat --angle 0 --speed 1 --hole 9,9 -o /tmp/x"}) {
+                                  "--field flat --angle 0 --speed 1 --hole 9,9 -o /tmp/x",
+                                  "--field flat --angle 0 --speed 1 -o /nonexistent/folder/hit"}) {
     const auto r = run_minigolf("render " + std::string(args));
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
   }
+  // A folder where the MP4 would go is never replaced.
+  const auto dir = testing::temp_dir("render_isdir");
+  std::filesystem::create_directories(dir / "hit.mp4");
+  const auto r = run_minigolf("render --field flat --angle 0 --speed 1 -o " + q(dir / "hit"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("not a regular file"), std::string::npos) << r.err;
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "hit.mp4"));
 }
 
 /// A shipped data file, by absolute path (the tests run in the build folder).
