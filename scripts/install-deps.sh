@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-numpy python3-sklearn python3-matplotlib python3-pytest
   valgrind  # bench/sim/putt_overhead.sh counts instructions with callgrind
+  libglfw3-dev xvfb xauth ffmpeg  # src/viz: view, render (GLFW windows; xvfb-run without a screen; MP4)
 )
 
 missing=()

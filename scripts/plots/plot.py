@@ -9,6 +9,8 @@
   plot.py learning-curve CURVE.csv OUT.png [--xlabel TEXT] [--percent] [--title T]
   plot.py success TABLE.csv OUT.png [--title T]
   plot.py launch-error IN.csv OUT.png
+  plot.py ds DEMOS.csv GMM.csv FIELD.csv OUT.png [--plane xz|xy] [--target X,Y,Z] [--title T]
+  plot.py strength STRENGTH.csv MODULATORS.csv OUT.png [--default-speed V] [--title T]
   plot.py demo DIR
 
 Exit 0 and one PNG (written atomically); on a bad input one 'plot: error: ...' line, exit 2.

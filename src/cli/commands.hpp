@@ -12,5 +12,7 @@ void add_vision_commands(CLI::App& app);    // vision-sim
 void add_study_commands(CLI::App& app);     // study launch-error
 void add_console_command(CLI::App& app);    // console
 void add_play_commands(CLI::App& app);      // sweep | collect | evaluate
+void add_viz_commands(CLI::App& app);       // view | render
+void add_plot_commands(CLI::App& app);      // plot ds | strength | field | model
 
 }  // namespace mg::cli

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   mg::cli::add_study_commands(app);
   mg::cli::add_console_command(app);
   mg::cli::add_play_commands(app);
+  mg::cli::add_viz_commands(app);
+  mg::cli::add_plot_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

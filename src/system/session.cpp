@@ -228,9 +228,16 @@ void Session::tick_locked(bool lockstep) {
       e.distance = std::hypot(o.rest_position[0] - hole[0], o.rest_position[1] - hole[1]);
       e.duration = d->time - hit_time_;
       push_event_locked(e);
+      last_outcome_ = o;
       tracker_.reset();
     }
+    if (options_.observer) options_.observer->after_step(view_locked());
   }
+}
+
+SessionView Session::view_locked() const {
+  return SessionView{world_,  d_.get(),          *model_,          *md_, angle_, speed_, hit_when_at_rest_,
+                     tracker_.has_value(), last_outcome_ ? &*last_outcome_ : nullptr};
 }
 
 void Session::robot_tick_locked() {
@@ -321,17 +328,25 @@ void Session::print_events() {
 
 void Session::run_for(double seconds) {
   if (options_.realtime) {
-    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(seconds));
+    while (Clock::now() < until && !interrupted_.load())  // the robot thread prints meanwhile
+      std::this_thread::sleep_for(std::min<Clock::duration>(until - Clock::now(),
+                                                            std::chrono::milliseconds(50)));
     print_events();
     return;
   }
   const long ticks = std::lround(seconds / config_.core_period());
-  for (long k = 0; k < ticks; ++k) {
+  const auto start = Clock::now();
+  const auto period = std::chrono::duration<double>(config_.core_period());
+  for (long k = 0; k < ticks && !interrupted_.load(std::memory_order_relaxed); ++k) {
     {
       std::lock_guard lock(mutex_);
       tick_locked(true);
     }
     print_events();
+    if (options_.paced)
+      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(period * (k + 1)));
   }
 }
 
@@ -404,7 +419,7 @@ void Session::say(std::string_view text) {
 
 void Session::run(std::istream& in, bool prompt) {
   std::string line;
-  for (;;) {
+  while (!interrupted_.load()) {
     if (prompt) {
       std::lock_guard lock(out_mutex_);
       out_ << "minigolf> ";

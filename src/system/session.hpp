@@ -44,8 +44,35 @@ using control::CoreTiming;
 using control::ModuleConfig;
 using control::ModuleState;
 
+/// What an observer of a session sees: everything under the session mutex, read only.
+struct SessionView {
+  const sim::World& world;
+  const mjData* d;
+  const control::ModuleModel& model;
+  const control::ModuleData& module;
+  double angle;       ///< [rad] the console's hitting angle
+  double speed;       ///< [m/s] the console's club speed
+  bool hit_armed;     ///< `hit` waits for the rest pose
+  bool ball_rolling;  ///< hit, outcome not decided yet
+  const sim::PuttOutcome* last_outcome;  ///< the latest decided hit (nullptr: none yet)
+};
+
+/// Called by the session after every physics step, under the session mutex, on the thread that
+/// steps (lockstep: the caller of execute; realtime: the core thread). It must not keep the view
+/// past the call and, in realtime mode, must take microseconds (it delays the next tick). What it
+/// does cannot change the simulation: it sees const state only.
+class SessionObserver {
+ public:
+  virtual ~SessionObserver() = default;
+  virtual void after_step(const SessionView& view) = 0;
+};
+
 struct SessionOptions {
   bool realtime = false;    ///< three threads paced by the wall clock; else lockstep
+  /// Lockstep only: `wait S` takes S seconds of wall clock (sleeps between ticks, outside the
+  /// mutex), for watching; the simulation is the same bits as unpaced.
+  bool paced = false;
+  SessionObserver* observer = nullptr;  ///< not owned; must outlive the session
   bool vision_sim = false;  ///< normal mode: the built-in vision simulator publishes on loopback
   bool echo = false;        ///< print every command line before its answer (scripts, logs)
   std::uint64_t seed = 1;   ///< vision simulator noise and dropouts
@@ -94,6 +121,17 @@ class Session {
   perception::VisionCounters vision_counters() const;
   std::array<double, 2> ball_position() const;
   std::string scheduling() const;  ///< the scheduler and the thread priorities it got
+  /// Calls `visit` with the session's state under the session mutex (any thread; keep it short:
+  /// the scheduler waits meanwhile).
+  template <class Visit>
+  void inspect(Visit&& visit) const {
+    std::lock_guard lock(mutex_);
+    visit(view_locked());
+  }
+  /// Makes a running `wait` return at its next tick and `run` stop before its next line (any
+  /// thread; for a viewer whose window was closed).
+  void interrupt() { interrupted_ = true; }
+  bool interrupted() const { return interrupted_.load(); }
 
  private:
   struct Event;
@@ -109,6 +147,7 @@ class Session {
   void do_command(const control::ConsoleCommand& command);
   void load_params(const std::string& path);
   std::string scheduling_locked() const;
+  SessionView view_locked() const;
 
   ModuleConfig config_;
   SessionOptions options_;
@@ -131,6 +170,7 @@ class Session {
   bool hit_when_at_rest_ = false;
   std::optional<sim::OutcomeTracker> tracker_;  ///< the ball after a hit, until decided
   double hit_time_ = 0.0;                        ///< [s] simulated time of that hit
+  std::optional<sim::PuttOutcome> last_outcome_;  ///< the latest decided hit
   int steps_per_tick_ = 2;
   TimingHistogram timing_;
 
@@ -143,6 +183,7 @@ class Session {
   mutable std::mutex mutex_;  ///< world, module, perception, recorder, events
   std::mutex out_mutex_;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> interrupted_{false};
   std::atomic<std::uint64_t> deadline_misses_{0};
   std::atomic<std::uint64_t> core_ticks_{0};
   std::thread core_thread_;

@@ -343,3 +343,67 @@ def test_usage_errors_are_one_line(tmp_path, sweep_csv):
     header_only.write_text("angle,speed,sunk,closest_approach\n")
     assert_error(run("sweep", header_only, tmp_path / "x.png"), "no data rows")
     assert_error(run("sweep", sweep_csv, tmp_path / "no" / "dir" / "x.png"), "does not exist")
+
+
+# ---- ds and strength (minigolf plot ds | strength export these files) ----
+
+def ds_inputs(tmp_path):
+    rows = []
+    for demo in range(3):
+        for i in range(20):
+            s = i / 19
+            rows.append([demo, 0.01 * i, -0.3 * (1 - s), 0.02 * demo * (1 - s), 0.02 + 0.1 * (1 - s) ** 2,
+                         1.5 * s, 0.3 * (1 - s)])
+    demos = write_csv(tmp_path / "demos.csv", ["demo", "t", "x", "y", "z", "speed", "distance"], rows)
+    gmm = write_csv(tmp_path / "gmm.csv", ["k", "prior", "mx", "my", "mz", "cxx", "cxy", "cxz", "cyy", "cyz", "czz"],
+                    [[0, 0.5, -0.2, 0.0, 0.08, 0.004, 0.0, 0.001, 0.002, 0.0, 0.002],
+                     [1, 0.5, -0.05, 0.0, 0.03, 0.001, 0.0, 0.0, 0.001, 0.0, 0.0005]])
+    grid = []
+    for a in np.linspace(-0.35, 0.05, 8):
+        for b in np.linspace(0.0, 0.15, 6):
+            grid.append([a, b, -a + 0.3, -(b - 0.02), math.hypot(-a + 0.3, b - 0.02)])
+    field = write_csv(tmp_path / "field.csv", ["a", "b", "u", "v", "speed"], grid)
+    return demos, gmm, field
+
+
+def assert_wide_png(result, path):
+    assert result.returncode == 0, result.stderr
+    assert os.path.getsize(path) > 1000
+    h, w = mpimg.imread(str(path)).shape[:2]
+    assert w > h
+
+
+def test_ds_draws_demonstrations_ellipses_and_streamlines(tmp_path):
+    demos, gmm, field = ds_inputs(tmp_path)
+    out = tmp_path / "ds.png"
+    assert_wide_png(run("ds", demos, gmm, field, out, "--target=0,0,0.02135"), out)
+    out2 = tmp_path / "ds_xy.png"
+    assert_wide_png(run("ds", demos, gmm, field, out2, "--plane", "xy"), out2)
+
+
+def test_ds_rejects_bad_inputs(tmp_path):
+    demos, gmm, field = ds_inputs(tmp_path)
+    out = tmp_path / "ds.png"
+    assert_error(run("ds", demos, gmm, tmp_path / "missing.csv", out), "missing.csv")
+    bad = write_csv(tmp_path / "bad_gmm.csv", ["k", "prior", "mx"], [[0, 1, 0]])
+    assert_error(run("ds", demos, bad, field, out), "bad_gmm.csv", "my")
+    neg = write_csv(tmp_path / "neg.csv", ["k", "prior", "mx", "my", "mz", "cxx", "cxy", "cxz", "cyy", "cyz", "czz"],
+                    [[0, 1, 0, 0, 0, -1, 0, 0, -1, 0, -1]])
+    assert_error(run("ds", demos, neg, field, out), "positive")
+    assert_error(run("ds", demos, gmm, field, out, "--plane", "yz"), "--plane")
+    assert_error(run("ds", demos, gmm, field, out, "--target", "1,2"), "--target")
+    assert not out.exists()
+
+
+def test_strength_draws_both_panels_and_rejects_bad_inputs(tmp_path):
+    rows = [[d, 0.3 * (1 - s), 1.5 * s, max(0.15, 1.5 * s)] for d in range(2) for s in np.linspace(0, 1, 15)]
+    strength = write_csv(tmp_path / "strength.csv", ["demo", "distance", "speed", "strength"], rows)
+    r = np.linspace(0, 0.36, 20)
+    mods = write_csv(tmp_path / "mods.csv", ["r", "s_constant_1", "s_sine_1"],
+                     [[x, 0.66, 0.66 + 0.34 * math.sin(math.pi * min(x, 0.3) / 0.6) ** 2] for x in r])
+    out = tmp_path / "strength.png"
+    assert_wide_png(run("strength", strength, mods, out, "--default-speed", "1.52"), out)
+    nomod = write_csv(tmp_path / "nomod.csv", ["r", "other"], [[0, 1]])
+    assert_error(run("strength", strength, nomod, tmp_path / "x.png"), "s_constant_")
+    text = write_csv(tmp_path / "text.csv", ["demo", "distance", "speed", "strength"], [[0, "abc", 1, 1]])
+    assert_error(run("strength", text, mods, tmp_path / "x.png"), "text.csv", "distance")

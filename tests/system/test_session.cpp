@@ -2,11 +2,14 @@
 // mode over loopback UDP (vision simulator, garbage, stale and lost perception), `auto`.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "system/session.hpp"
@@ -115,6 +118,75 @@ TEST(Session, LockstepRunsAreBitIdentical) {
   const std::string b = strip_timing(run_script(script));
   EXPECT_EQ(a, b);
   EXPECT_NE(a.find("ball back on the tee"), std::string::npos) << a;
+}
+
+/// Counts the steps it sees and keeps the latest ball position (for the observer tests).
+class CountingObserver final : public SessionObserver {
+ public:
+  void after_step(const SessionView& v) override {
+    ++steps;
+    last_time = v.d->time;
+    const mjtNum* b = v.d->qpos + v.world.ids().ball_qpos;
+    ball = {b[0], b[1]};
+    saw_hitting = saw_hitting || v.module.state == ModuleState::kHitting;
+  }
+  long steps = 0;
+  double last_time = 0.0;
+  std::array<double, 2> ball{};
+  bool saw_hitting = false;
+};
+
+TEST(Session, ObserverSeesEveryStepAndPacingKeepsTheBits) {
+  const char* lines[] = {"speed 0.9", "hit", "wait 1.2"};
+  std::array<double, 2> plain{};
+  {
+    std::ostringstream out;
+    Session session(ModuleConfig{}, {}, out);
+    for (const char* l : lines) session.execute(l);
+    plain = session.ball_position();
+  }
+  CountingObserver observer;
+  SessionOptions options;
+  options.observer = &observer;
+  options.paced = true;
+  std::ostringstream out;
+  Session session(ModuleConfig{}, options, out);
+  const auto start = std::chrono::steady_clock::now();
+  for (const char* l : lines) session.execute(l);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto ball = session.ball_position();
+  EXPECT_EQ(ball[0], plain[0]);  // bit for bit: observing and pacing change nothing
+  EXPECT_EQ(ball[1], plain[1]);
+  EXPECT_EQ(observer.ball, ball);
+  EXPECT_EQ(observer.steps, 1200);  // 1.2 s of 1 ms steps
+  EXPECT_DOUBLE_EQ(observer.last_time, session.time());
+  EXPECT_TRUE(observer.saw_hitting);
+  EXPECT_GE(wall, 1.19);  // paced: `wait 1.2` took the wall clock's 1.2 s
+  session.inspect([&](const SessionView& v) {
+    EXPECT_EQ(v.d->time, observer.last_time);
+    EXPECT_FALSE(v.hit_armed);
+  });
+}
+
+TEST(Session, InterruptEndsAPacedWaitAtItsNextTick) {
+  SessionOptions options;
+  options.paced = true;
+  std::ostringstream out;
+  Session session(ModuleConfig{}, options, out);
+  std::thread closer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    session.interrupt();  // as the viewer does when its window is closed
+  });
+  const auto start = std::chrono::steady_clock::now();
+  session.execute("wait 10");
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  closer.join();
+  EXPECT_LT(wall, 2.0);
+  EXPECT_GT(session.time(), 0.1);
+  EXPECT_LT(session.time(), 2.0);
+  std::istringstream in("status\n");
+  session.run(in, false);  // interrupted: runs no further line
+  EXPECT_EQ(out.str().find("state Idle"), std::string::npos) << out.str();
 }
 
 TEST(Session, RecorderWritesOneRowPerRobotUpdate) {

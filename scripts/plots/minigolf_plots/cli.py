@@ -60,14 +60,30 @@ def build_parser():
     s.add_argument("csv", metavar="IN.csv")
     s.add_argument("out", metavar="OUT.png")
 
+    s = sub.add_parser("ds", help="the hitting DS: demonstrations, GMM ellipses, streamlines")
+    s.add_argument("demos_csv", metavar="DEMOS.csv")
+    s.add_argument("gmm_csv", metavar="GMM.csv")
+    s.add_argument("field_csv", metavar="FIELD.csv")
+    s.add_argument("out", metavar="OUT.png")
+    s.add_argument("--plane", default="xz", help="xz | xy")
+    s.add_argument("--target", metavar="X,Y,Z", help="x*, the ball [m]")
+    s.add_argument("--title")
+
+    s = sub.add_parser("strength", help="the strength factor and the speed modulators")
+    s.add_argument("strength_csv", metavar="STRENGTH.csv")
+    s.add_argument("modulators_csv", metavar="MODULATORS.csv")
+    s.add_argument("out", metavar="OUT.png")
+    s.add_argument("--default-speed", type=float, metavar="V", help="v(x*) [m/s]")
+    s.add_argument("--title")
+
     s = sub.add_parser("demo", help="the main job's demo putts over the four fields -> DIR/fields.png")
     s.add_argument("dir", metavar="DIR")
     return p
 
 
 def run(a):
-    from . import (plot_dataset, plot_demo, plot_field, plot_launch_error, plot_learning_curve,
-                   plot_model, plot_success, plot_sweep)
+    from . import (plot_dataset, plot_demo, plot_ds, plot_field, plot_launch_error,
+                   plot_learning_curve, plot_model, plot_strength, plot_success, plot_sweep)
     if a.command == "sweep":
         plot_sweep(a.sweep_csv, a.out, a.title)
     elif a.command == "model":
@@ -85,6 +101,18 @@ def run(a):
         plot_success(a.table_csv, a.out, a.title)
     elif a.command == "launch-error":
         plot_launch_error(a.csv, a.out)
+    elif a.command == "ds":
+        target = None
+        if a.target:
+            try:
+                target = tuple(float(v) for v in a.target.split(","))
+            except ValueError:
+                target = ()
+            if len(target) != 3:
+                raise PlotError(f"--target: '{a.target}' is not X,Y,Z in metres")
+        plot_ds(a.demos_csv, a.gmm_csv, a.field_csv, a.out, a.plane, target, a.title)
+    elif a.command == "strength":
+        plot_strength(a.strength_csv, a.modulators_csv, a.out, a.default_speed, a.title)
     elif a.command == "demo":
         plot_demo(a.dir)
 

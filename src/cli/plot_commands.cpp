@@ -1,0 +1,234 @@
+// plot ds | strength | field | model: figures of the models (thesis figs 2.2-2.4, 5.4b, 6.3-6.9).
+//
+// Each exports the numbers it needs as CSV (a temporary folder, or --data-dir to keep them) and
+// draws them with scripts/plots/plot.py (/usr/bin/python3, matplotlib): one PNG. A missing or
+// malformed input: one line, exit 2.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli/cli_util.hpp"
+#include "cli/commands.hpp"
+#include "core/error.hpp"
+#include "core/io.hpp"
+#include "ds/demonstrations.hpp"
+#include "ds/hitting_model.hpp"
+#include "system/system.hpp"
+#include "viz/figure_data.hpp"
+
+namespace mg::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Where the exported CSV files go: --data-dir, or a temporary folder removed afterwards.
+class DataDir {
+ public:
+  explicit DataDir(const std::string& keep) {
+    if (!keep.empty()) {
+      path_ = keep;
+      fs::create_directories(path_);
+      return;
+    }
+    std::string tmpl = (fs::temp_directory_path() / "minigolf-plot-XXXXXX").string();
+    if (!::mkdtemp(tmpl.data())) throw IoError("plot: cannot make a temporary folder");
+    path_ = tmpl;
+    temporary_ = true;
+  }
+  ~DataDir() {
+    std::error_code ec;
+    if (temporary_) fs::remove_all(path_, ec);
+  }
+  fs::path write(const std::string& name, const std::string& text) const {
+    write_file_atomic(path_ / name, text);
+    return path_ / name;
+  }
+
+ private:
+  fs::path path_;
+  bool temporary_ = false;
+};
+
+/// Runs plot.py; its one-line error becomes ours (input problems: exit 2).
+void run_plot_script(const std::string& args, const std::string& png) {
+  const fs::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";
+  const std::string command = "/usr/bin/python3 " + shell_quote(script.string()) + " " + args + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) throw Error("plot: cannot run /usr/bin/python3");
+  std::string text;
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
+  const int status = ::pclose(pipe);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  if (const auto nl = text.rfind('\n'); nl != std::string::npos) text = text.substr(nl + 1);
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (code == 2) throw InputError(text);
+  if (code != 0) throw Error(fmt::format("plot: {} failed (exit {}): {}", script.string(), code, text));
+  std::error_code ec;
+  if (!fs::is_regular_file(png, ec) || fs::file_size(png, ec) == 0)
+    throw Error(fmt::format("plot: {} was not written", png));
+}
+
+struct DsArgs {
+  std::string hitting_model, demos, plane = "xz", out, data_dir, speeds = "0.5,1.0,1.5";
+};
+
+void add_ds_inputs(CLI::App* cmd, DsArgs& a) {
+  cmd->add_option("--hitting-model", a.hitting_model, "Hitting DS model (default: the shipped one)");
+  cmd->add_option("--demos", a.demos, "Demonstrations CSV (default: data/demos/default.csv)");
+  cmd->add_option("-o,--output", a.out, "PNG to write")->required();
+  cmd->add_option("--data-dir", a.data_dir, "Keep the exported CSV files here");
+}
+
+struct DsInputs {
+  ds::HittingModel model;
+  std::vector<ds::Demonstration> demos;
+};
+
+DsInputs load_ds_inputs(const DsArgs& a) {
+  const control::ModuleConfig config = system::load_config("", "", a.hitting_model);
+  DsInputs in{ds::read_hitting_model(config.hitting_model),
+              ds::read_demonstrations(system::resolve_data_path(a.demos.empty() ? "data/demos/default.csv" : a.demos))};
+  if (in.demos.empty()) throw InputError("plot: no demonstrations");
+  return in;
+}
+
+void add_plot_ds(CLI::App* plot) {
+  auto a = std::make_shared<DsArgs>();
+  CLI::App* cmd = plot->add_subcommand("ds", "The hitting DS: demonstrations, GMM ellipses (2 sigma), streamlines");
+  add_ds_inputs(cmd, *a);
+  cmd->add_option("--plane", a->plane, "xz (side view through x*) | xy (top view)")->capture_default_str();
+  cmd->callback([a] {
+    const viz::DsPlane plane = viz::parse_ds_plane(a->plane);
+    const DsInputs in = load_ds_inputs(*a);
+    const DataDir dir(a->data_dir);
+    const auto demos = dir.write("ds_demonstrations.csv", viz::demonstrations_csv(in.demos, in.model));
+    const auto gmm = dir.write("ds_gmm.csv", viz::gmm_csv(in.model));
+    const auto field = dir.write("ds_field.csv", viz::ds_field_csv(in.model, in.demos, plane));
+    const auto& xs = in.model.x_star();
+    run_plot_script(fmt::format("ds {} {} {} {} --plane {} --target={},{},{}", shell_quote(demos.string()),
+                                shell_quote(gmm.string()), shell_quote(field.string()), shell_quote(a->out),
+                                a->plane, xs.x(), xs.y(), xs.z()),
+                    a->out);
+    fmt::print("wrote {} ({} demonstrations, {} Gaussians, {} plane)\n", a->out, in.demos.size(),
+               in.model.seds_gmm().num_components(), a->plane);
+  });
+}
+
+void add_plot_strength(CLI::App* plot) {
+  auto a = std::make_shared<DsArgs>();
+  CLI::App* cmd = plot->add_subcommand("strength", "The strength factor along the demonstrations and both speed modulators");
+  add_ds_inputs(cmd, *a);
+  cmd->add_option("--speeds", a->speeds, "Club speeds v^d [m/s] of the modulator curves, a,b,...")->capture_default_str();
+  cmd->callback([a] {
+    std::vector<double> speeds;
+    for (const auto& s : parse_names("--speeds", a->speeds)) speeds.push_back(parse_number("--speeds", s));
+    const DsInputs in = load_ds_inputs(*a);
+    const DataDir dir(a->data_dir);
+    const auto strength = dir.write("strength.csv", viz::strength_csv(in.model, in.demos));
+    const auto mods = dir.write("modulators.csv", viz::modulators_csv(in.model, in.demos, speeds));
+    run_plot_script(fmt::format("strength {} {} {} --default-speed {}", shell_quote(strength.string()),
+                                shell_quote(mods.string()), shell_quote(a->out), in.model.default_speed()),
+                    a->out);
+    fmt::print("wrote {} (v(x*) = {:.3f} m/s, {} demonstrations)\n", a->out, in.model.default_speed(), in.demos.size());
+  });
+}
+
+void add_plot_field(CLI::App* plot) {
+  struct Args {
+    std::string config, field = "flat", hole, out, data_dir;
+    std::vector<std::string> shots;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = plot->add_subcommand("field", "A field's height colour map with ball-only trajectories");
+  cmd->add_option("--field", a->field, "Shipped field name or path")->capture_default_str();
+  cmd->add_option("--config", a->config, "Module config YAML");
+  cmd->add_option("--hole", a->hole, "Hole centre X,Y [m] (default: the field's)");
+  cmd->add_option("--shot", a->shots, "ANGLE,SPEED launch of a ball-only putt [rad, m/s]; repeat (default: 3 at the hole)");
+  cmd->add_option("-o,--output", a->out, "PNG to write")->required();
+  cmd->add_option("--data-dir", a->data_dir, "Keep the exported CSV files here");
+  cmd->callback([a] {
+    const system::System sys(system::load_config(a->config, a->field));
+    const field::Field& f = sys.field();
+    const std::array<double, 2> hole = a->hole.empty() ? f.hole.position : parse_vector<2>("--hole", a->hole);
+    field::check_hole_position(f, hole);
+    std::vector<std::array<double, 2>> shots;
+    for (const auto& s : a->shots) shots.push_back(parse_vector<2>("--shot", s));
+    if (shots.empty()) {
+      const double dir = std::atan2(hole[1] - f.tee[1], hole[0] - f.tee[0]);
+      for (double v : {0.9, 1.2, 1.5}) shots.push_back({dir, v});
+    }
+    for (const auto& s : shots)
+      if (!(s[1] > 0.0 && s[1] <= 10.0)) throw InputError(fmt::format("--shot: speed {} m/s: expected (0, 10]", s[1]));
+    const DataDir dir(a->data_dir);
+    const auto heights = dir.write("field_heights.csv", viz::heights_csv(f));
+    system::SystemData d(sys);
+    std::string args;
+    for (std::size_t k = 0; k < shots.size(); ++k) {
+      const auto out = system::ball_putt(sys, d, hole, shots[k][0], shots[k][1], 0.01);
+      const auto t = dir.write(fmt::format("field_path_{}.csv", k), viz::trajectory_csv(out));
+      args += fmt::format(" --trajectory {}", shell_quote(t.string()));
+    }
+    run_plot_script(fmt::format("field {} {}{} --hole={},{} --tee={},{} --title {}", shell_quote(heights.string()),
+                                shell_quote(a->out), args, hole[0], hole[1], f.tee[0], f.tee[1],
+                                shell_quote(fmt::format("{}: height map and ball-only paths", f.name))),
+                    a->out);
+    fmt::print("wrote {} ({} ball paths)\n", a->out, shots.size());
+  });
+}
+
+void add_plot_model(CLI::App* plot) {
+  struct Args {
+    std::string model, data, validation, output, out, data_dir;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = plot->add_subcommand("model", "A learner's prediction surface with +-2 sigma and its training points");
+  cmd->add_option("--model", a->model, "Parameter model JSON (minigolf train)")->required();
+  cmd->add_option("--data", a->data, "Its training data CSV")->required();
+  cmd->add_option("--validation", a->validation, "Validation data CSV (drawn as well)");
+  cmd->add_option("--output", a->output, "Which output (default: the model's first)");
+  cmd->add_option("-o,--out", a->out, "PNG to write")->required();
+  cmd->add_option("--data-dir", a->data_dir, "Keep the exported CSV files here");
+  cmd->callback([a] {
+    const learning::Model model = learning::load_model(system::resolve_data_path(a->model));
+    const learning::Dataset data = learning::load_dataset(system::resolve_data_path(a->data), model.input_names,
+                                                          model.output_names);
+    if (!a->validation.empty())
+      learning::load_dataset(system::resolve_data_path(a->validation), model.input_names, model.output_names);
+    const std::string output = a->output.empty() ? model.output_names.front() : a->output;
+    if (std::find(model.output_names.begin(), model.output_names.end(), output) == model.output_names.end())
+      throw InputError(fmt::format("--output '{}': the model's outputs are {}", output, fmt::join(model.output_names, ", ")));
+    const DataDir dir(a->data_dir);
+    const auto pred = dir.write("model_predictions.csv", viz::predictions_csv(model, data));
+    std::string inputs;
+    for (const auto& n : model.input_names) inputs += (inputs.empty() ? "" : ",") + n;
+    run_plot_script(fmt::format("model {} --predictions {} --train {}{} --output {} --inputs {} --title {}",
+                                shell_quote(a->out), shell_quote(pred.string()),
+                                shell_quote(system::resolve_data_path(a->data).string()),
+                                a->validation.empty() ? "" : " --validation " + shell_quote(system::resolve_data_path(a->validation).string()),
+                                shell_quote(output), shell_quote(inputs),
+                                shell_quote(fmt::format("{} {}: mean ± 2σ and training points",
+                                                        learning::method_name(model.method), output))),
+                    a->out);
+    fmt::print("wrote {} ({} training points, output {})\n", a->out, data.inputs.rows(), output);
+  });
+}
+
+}  // namespace
+
+void add_plot_commands(CLI::App& app) {
+  CLI::App* plot = app.add_subcommand("plot", "Figures of the models: ds | strength | field | model");
+  plot->require_subcommand(1);
+  add_plot_ds(plot);
+  add_plot_strength(plot);
+  add_plot_field(plot);
+  add_plot_model(plot);
+}
+
+}  // namespace mg::cli
