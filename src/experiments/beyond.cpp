@@ -8,6 +8,7 @@
 #include "core/rng.hpp"
 #include "experiments/evaluate.hpp"
 #include "experiments/learning_curves.hpp"
+#include "selfteach/robust.hpp"
 #include "selfteach/self_teach.hpp"
 #include "system/parallel.hpp"
 
@@ -120,6 +121,35 @@ std::map<std::string, std::string> beyond_thesis(const system::System& sys, cons
                                    kind == 0 ? "perception std [mm]" : "torque std [of limits]", x, 100 * e.success_ratio,
                                    100 * e.ci95[0], 100 * e.ci95[1]);
       }
+  }
+  // Noise-aware: at the strongest noise of each kind, the arrival speed that maximises P(sink)
+  // under the noise as the robot measures it (10 practice putts), self-taught anew for it.
+  if (region.learn_speed && taught.trained) {
+    for (int kind = 0; kind < 2; ++kind) {
+      const double level = kind == 0 ? perception.back() : torque.back();
+      const auto noise = kind == 0 ? selfteach::LaunchNoise{0.0, 0.0, level, 0}
+                                   : selfteach::measure_launch_noise(sys, region, level, 0.0, 10, derive_seed(opt.seed, 81));
+      selfteach::SelfTeachOptions ro = so;
+      ro.checkpoints = {};
+      ro.arrival_speed = selfteach::robust_arrival_speed(sys.field(), region, noise);
+      const auto robust = selfteach::self_teach(sys, region, ro);
+      if (!robust.trained) continue;
+      EvaluateOptions ne;
+      ne.situations = opt.quick ? 30 : 100;
+      ne.seed = derive_seed(opt.seed, 79);
+      ne.threads = opt.threads;
+      ne.oracle = false;
+      ne.noise_seed = derive_seed(opt.seed, 80);
+      (kind == 0 ? ne.perception_noise : ne.torque_noise) = level;
+      const auto e = evaluate_model(sys, robust.model, region, ne);
+      const double x = kind == 0 ? 1000.0 * level : level;
+      const std::string label = "self-teach noise-aware";
+      (kind == 0 ? pcurve : tcurve) += fmt::format("{},{},{},{},{}\n", label, x, e.success_ratio, e.ci95[0], e.ci95[1]);
+      md["noise"] += fmt::format("| {} | {} (s* = {:.2f} m/s; measured launch std {:.3f} deg, speed {:.2f} %; {} + {} putts) | {} | {:g} | {:.0f} % ({:.0f}-{:.0f} %) |\n",
+                                 name, label, ro.arrival_speed, noise.angle_std * 180.0 / M_PI, 100.0 * noise.speed_rel_std,
+                                 noise.putts, robust.putts.size(), kind == 0 ? "perception std [mm]" : "torque std [of limits]", x,
+                                 100 * e.success_ratio, 100 * e.ci95[0], 100 * e.ci95[1]);
+    }
   }
   write_file_atomic(opt.csv_path(name + "_perception_noise.csv"), pcurve);
   write_file_atomic(opt.csv_path(name + "_torque_noise.csv"), tcurve);
