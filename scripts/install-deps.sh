@@ -10,6 +10,8 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-numpy python3-sklearn python3-matplotlib python3-pytest
   valgrind  # bench/sim/putt_overhead.sh counts instructions with callgrind
+  pybind11-dev python3-dev  # the minigolf Python module (docs/python.md)
+  libopenmpi-dev openmpi-bin  # MPI scale-out (docs/scale-out.md)
 )
 
 missing=()

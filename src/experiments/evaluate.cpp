@@ -7,7 +7,8 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
-#include "system/parallel.hpp"
+#include "experiments/wire.hpp"
+#include "system/distributed.hpp"
 
 namespace mg::experiments {
 
@@ -82,8 +83,8 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
   const auto& c = system.config();
   const int n = static_cast<int>(holes.size());
   int done = 0;
-  system::parallel_for(
-      system, n, options.threads,
+  system::distributed_for(
+      system, e.rows, options.threads,
       [&](int i, system::SystemData& data) {
         SituationResult& r = e.rows[static_cast<std::size_t>(i)];
         r.hole = holes[static_cast<std::size_t>(i)];

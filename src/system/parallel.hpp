@@ -14,10 +14,14 @@
 
 namespace mg::system {
 
-/// Threads to use: `requested` if > 0, else all cores.
+/// Processes of this run on this machine (MPI, system/distributed.hpp; 1 without).
+int local_process_count();
+
+/// Threads to use: `requested` if > 0, else all cores (shared by the run's processes on this
+/// machine).
 inline int thread_count(int requested) {
   if (requested > 0) return requested;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / local_process_count());
 }
 
 /// Calls job(i, data) for i in [0, n) on `threads` threads; `done(i)` (optional) is called after
