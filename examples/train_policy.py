@@ -3,7 +3,8 @@
 
 The policy maps the situation xi = hole - tee [m] to (theta [rad], v [m/s]) through features
 (1, xi_x, xi_y, |xi|); each iteration plays Gaussian-perturbed actions on random situations and
-refits the policy by least squares to the actions that sank the ball (reward-weighted regression).
+refits the policy by least squares to the best putts so far (the cross-entropy method): those
+that sank, or, while too few have, the quarter that came closest to the hole (`info`).
 
     PYTHONPATH=build/python /usr/bin/python3 examples/train_policy.py [--mode arm]
 """
@@ -25,8 +26,8 @@ def features(xi):
 
 
 def play(env, weights, episodes, seed, noise=None, rng=None):
-    """Returns (features, actions, rewards) of `episodes` episodes starting from `seed`."""
-    rows, actions, rewards = [], [], []
+    """Returns (features, actions, rewards, closest approaches) of `episodes` episodes from `seed`."""
+    rows, actions, rewards, closest = [], [], [], []
     obs, _ = env.reset(seed=seed)
     for _ in range(episodes):
         phi = features(obs)
@@ -34,17 +35,17 @@ def play(env, weights, episodes, seed, noise=None, rng=None):
         if noise is not None:
             a = a + rng.normal(0.0, noise)
         a = np.clip(a, env.action_space.low, env.action_space.high)
-        _, reward, _, _, _ = env.step(a)
-        rows.append(phi), actions.append(a), rewards.append(reward)
+        _, reward, _, _, info = env.step(a)
+        rows.append(phi), actions.append(a), rewards.append(reward), closest.append(info["closest_approach"])
         obs, _ = env.reset()
-    return np.array(rows), np.array(actions), np.array(rewards)
+    return np.array(rows), np.array(actions), np.array(rewards), np.nan_to_num(np.array(closest), nan=1.0)
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--field", default="flat")
     p.add_argument("--mode", default="ball", choices=["ball", "arm"])
-    p.add_argument("--iterations", type=int, default=5)
+    p.add_argument("--iterations", type=int, default=8)
     p.add_argument("--episodes", type=int, default=60, help="training putts per iteration")
     p.add_argument("--test", type=int, default=100, help="test putts")
     p.add_argument("--seed", type=int, default=1)
@@ -54,16 +55,17 @@ def main():
     # start: aim straight down the lane at a middling speed
     weights = np.zeros((4, 2))
     weights[0] = [0.0, 0.5 * (env.action_space.low[1] + env.action_space.high[1])]
-    noise = np.array([0.05, 0.4])  # [rad], [m/s]
-    X, Y = np.zeros((0, 4)), np.zeros((0, 2))
+    noise = np.array([0.1, 0.6])  # exploration std [rad], [m/s]
+    X, Y, W = np.zeros((0, 4)), np.zeros((0, 2)), np.zeros(0)
     for it in range(a.iterations):
-        phi, act, rew = play(env, weights, a.episodes, seed=a.seed + 1000 * (it + 1), noise=noise, rng=rng)
-        X, Y = np.vstack([X, phi[rew > 0]]), np.vstack([Y, act[rew > 0]])
-        if len(X) >= 4:
-            weights = np.linalg.lstsq(X, Y, rcond=None)[0]
-            noise = np.maximum(noise * 0.6, [0.005, 0.03])
-        print(f"iteration {it + 1}: {int(rew.sum())}/{len(rew)} sunk while exploring, {len(X)} examples")
-    _, _, rew = play(env, weights, a.test, seed=a.seed + 99)
+        phi, act, rew, closest = play(env, weights, a.episodes, seed=a.seed + 1000 * (it + 1), noise=noise, rng=rng)
+        X, Y = np.vstack([X, phi]), np.vstack([Y, act])
+        W = np.append(W, np.where(rew > 0, -1.0, closest))  # sunk first, then the closest
+        best = np.argsort(W, kind="stable")[: max(int(np.sum(W < 0)), len(W) // 4)]
+        weights = np.linalg.lstsq(X[best], Y[best], rcond=None)[0]
+        noise = np.maximum(noise * 0.8, [0.004, 0.04])
+        print(f"iteration {it + 1}: {int(rew.sum())}/{len(rew)} sunk while exploring")
+    _, _, rew, _ = play(env, weights, a.test, seed=a.seed + 99)
     print(f"success ratio {rew.mean():.3f} on {a.test} test situations ({a.mode}, {a.field})")
 
 

@@ -74,10 +74,10 @@ def check_env(env):
     obs_3, _ = env.reset(seed=456)
     assert env.unwrapped._np_random.bit_generator.state != seed_123_rng.bit_generator.state
     # reset(seed=None) continues the generator: it does not reseed it
-    before = copy.deepcopy(env.unwrapped._np_random)
+    generator = env.unwrapped._np_random
+    state = copy.deepcopy(generator.bit_generator.state)
     env.reset(seed=None)
-    before.integers(2**63 - 1)
-    assert env.unwrapped._np_random.bit_generator.state == before.bit_generator.state
+    assert env.unwrapped._np_random is generator and generator.bit_generator.state != state
     # check_reset_options
     env.reset(options={})
     # step: passive checker's return types
@@ -166,10 +166,10 @@ def test_reproducible_with_a_seed():
 
 
 def test_the_example_trains_a_policy():
-    r = subprocess.run([sys.executable, str(ROOT / "examples" / "train_policy.py"), "--iterations", "3",
-                        "--episodes", "40", "--test", "40"], capture_output=True, text=True, timeout=600)
+    r = subprocess.run([sys.executable, str(ROOT / "examples" / "train_policy.py"), "--test", "40"],
+                       capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     last = r.stdout.strip().splitlines()[-1]
     assert last.startswith("success ratio")
     ratio = float(last.split()[2])
-    assert ratio >= 0.3, r.stdout  # a linear policy learns the flat field (a random one: ~0.02)
+    assert ratio >= 0.8, r.stdout  # a linear policy learns the flat field (its start: 0)
