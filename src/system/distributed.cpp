@@ -1,11 +1,14 @@
 #include "system/distributed.hpp"
 
 #include <fcntl.h>
+#include <sched.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <climits>
 #include <cstdio>
 #include <cstdlib>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -36,7 +39,15 @@ int local_processes = 1;
 
 }  // namespace
 
-int local_process_count() { return local_processes; }
+int default_thread_count() {
+  const int online = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  int usable = online;
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (::sched_getaffinity(0, sizeof set, &set) == 0) usable = std::max(1, CPU_COUNT(&set));
+  // Bound to a subset: those cores are this process's. Unbound: share the machine.
+  return usable < online ? usable : std::max(1, online / local_processes);
+}
 
 bool mpi_built() {
 #ifdef MG_HAVE_MPI

@@ -14,15 +14,13 @@
 
 namespace mg::system {
 
-/// Processes of this run on this machine (MPI, system/distributed.hpp; 1 without).
-int local_process_count();
+/// The default thread count (system/distributed.cpp): the cores this process may run on (its CPU
+/// affinity: taskset, Slurm, mpirun --bind-to), shared with the run's other processes on this
+/// machine when they are not bound to their own cores.
+int default_thread_count();
 
-/// Threads to use: `requested` if > 0, else all cores (shared by the run's processes on this
-/// machine).
-inline int thread_count(int requested) {
-  if (requested > 0) return requested;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / local_process_count());
-}
+/// Threads to use: `requested` if > 0, else default_thread_count().
+inline int thread_count(int requested) { return requested > 0 ? requested : default_thread_count(); }
 
 /// Calls job(i, data) for i in [0, n) on `threads` threads; `done(i)` (optional) is called after
 /// each job under a lock, in completion order (progress, incremental saving). The first exception

@@ -70,3 +70,13 @@ def test_an_error_is_reported_once_with_the_exit_code(tmp_path):
               "-o", str(tmp_path / "x.csv"), check=False)
     assert one.returncode == 2 and r.returncode == 2
     assert r.stderr.count(one.stderr.strip()) == 1  # rank 0's line (mpirun adds its abort notice)
+
+
+def test_launch_study_same_bits(tmp_path):
+    outs = {}
+    for n in (0, 2):
+        out = tmp_path / f"np{n}"
+        r = run(n, "study", "launch-error", "--field", "flat", "--angles-deg", "-5,5", "--hits", "3", "--threads", "1",
+                "--out", str(out), "--json")
+        outs[n] = ((out / "launch_error.csv").read_bytes(), r.stdout)
+    assert outs[2] == outs[0]
