@@ -83,6 +83,12 @@ struct Data {
   mjData* d = nullptr;
 };
 
+/// Throws unless `d` is an mjData of `w` (another world's would be read out of bounds).
+mjData* data_of(const sim::World& w, const Data& d) {
+  if (d.world != &w) throw InputError("World: this Data belongs to another world (use that world's make_data)");
+  return d.d;
+}
+
 /// A SystemData that refuses to be used by two threads at once.
 struct PySystemData {
   explicit PySystemData(const system::System& s) : system(&s), data(s) {}
@@ -303,14 +309,16 @@ PYBIND11_MODULE(_minigolf, m) {
              d.d = d.owned.get();
              return d;
            }, py::keep_alive<0, 1>(), "A fresh mjData (ball on the tee, hole at the field's default)")
-      .def("reset", [](const sim::World& w, Data& d) { w.reset(d.d); }, "Ball on the tee, hole at the default")
+      .def("reset", [](const sim::World& w, Data& d) { w.reset(data_of(w, d)); }, "Ball on the tee, hole at the default")
       .def("step", [](const sim::World& w, Data& d, int n) {
+             mjData* dd = data_of(w, d);
+             if (n < 0) throw InputError(fmt::format("step: n: expected >= 0, got {}", n));
              py::gil_scoped_release release;
-             for (int i = 0; i < n; ++i) w.step(d.d);
+             for (int i = 0; i < n; ++i) w.step(dd);
            }, py::arg("data"), py::arg("n") = 1, "`n` physics steps (rolling resistance included) of timestep s")
-      .def("set_hole", [](const sim::World& w, Data& d, std::array<double, 2> p) { w.set_hole(d.d, p); },
+      .def("set_hole", [](const sim::World& w, Data& d, std::array<double, 2> p) { w.set_hole(data_of(w, d), p); },
            "Moves the hole to (x, y) [m]")
-      .def("hole_position", [](const sim::World& w, const Data& d) { return w.hole_position(d.d); }, "[m]")
+      .def("hole_position", [](const sim::World& w, const Data& d) { return w.hole_position(data_of(w, d)); }, "[m]")
       .def_property_readonly("mjcf", &sim::World::mjcf, "The generated MJCF text")
       .def_property_readonly("nq", [](const sim::World& w) { return w.model()->nq; })
       .def_property_readonly("nv", [](const sim::World& w) { return w.model()->nv; })

@@ -252,3 +252,9 @@ def test_ds_rollout_reaches_the_ball():
     assert r["reached"] and r["stop_reason"] == "reached"
     assert r["x"].shape == (len(r["t"]), 3) and r["position_error"] < 0.005
     assert np.linalg.norm(r["x"][-1] - np.array(h.x_star)) < 0.02
+
+
+def test_a_data_of_another_world_is_refused(flat):
+    d = flat.arm_world.make_data()
+    with pytest.raises(ValueError, match="another world"):
+        flat.ball_world.step(d)
