@@ -168,27 +168,27 @@ def putts(system, n, threads=1):
 
 
 def test_two_threads_finish_faster_than_twice_one(flat):
+    # Python threads against the library's own pool doing the same (1 thread: n putts; 2 threads:
+    # 2n), interleaved, medians of three: the machine is shared by other jobs.
     import os
     if len(os.sched_getaffinity(0)) < 2:
         pytest.skip("needs 2 cores")
-    n, ratios, pool = 12, [], []
-    for _ in range(3):  # the machine is shared: the best of three
+    n, ours, pool = 12, [], []
+    angles = [0.001 * k for k in range(n)]
+    for _ in range(3):
         one = putts(flat, n)
-        ratios.append(putts(flat, n, threads=2) / one)
-        if ratios[-1] < 1.7:
-            return
-        # the control: the library's own thread pool on the same putts
-        cells = dict(angles=[0.001 * k for k in range(n)], speeds=[2.0, 2.0], ball_only=True)
+        ours.append(putts(flat, n, threads=2) / one)
         t = time.perf_counter()
-        flat.sweep(threads=1, **cells)
+        flat.sweep(angles, [2.0], ball_only=True, threads=1)
         single = time.perf_counter() - t
         t = time.perf_counter()
-        flat.sweep(threads=2, **cells)
+        flat.sweep(angles, [2.0, 2.0], ball_only=True, threads=2)
         pool.append((time.perf_counter() - t) / single)
-    if min(pool) > 0.85:
-        pytest.skip(f"this process does not get 2 cores now (the C++ pool's 2 threads take {min(pool):.2f} x "
-                    f"1 thread's time; Python threads: {min(ratios):.2f} x)")
-    assert min(ratios) < 1.7, f"two threads took {ratios} x one thread's time (C++ pool: {pool})"
+    ours, pool = sorted(ours)[1], sorted(pool)[1]
+    if pool > 1.7:
+        pytest.skip(f"this process does not get 2 cores now (the C++ pool's 2 threads: {pool:.2f} x 1 thread's "
+                    f"time for twice the putts; Python threads: {ours:.2f} x)")
+    assert ours < max(1.7, 1.25 * pool), f"two Python threads: {ours:.2f} x one's time (C++ pool: {pool:.2f} x)"
 
 
 def test_one_system_data_per_thread(flat):
