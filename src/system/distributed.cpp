@@ -13,6 +13,8 @@
 #include <fmt/format.h>
 
 #ifdef MG_HAVE_MPI
+#define OMPI_SKIP_MPICXX 1  // the C API only
+#define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 #endif
 
