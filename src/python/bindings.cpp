@@ -532,6 +532,26 @@ PYBIND11_MODULE(_minigolf, m) {
            "The outcome of every (angle [rad], speed [m/s]) cell: dict of (len(angles), len(speeds)) arrays "
            "(sunk, hit, closest_approach [m], launch_angle [rad], launch_speed [m/s]) and the CSV `minigolf "
            "sweep` writes. threads: 0 = all cores. Releases the GIL.")
+      .def("collect",
+           [](const system::System& s, const std::string& out, const std::string& situations,
+              const std::string& strategy, int max_full_putts, std::uint64_t seed, int threads, bool resume) {
+             const field::Situations region = region_of(s.field(), situations);
+             experiments::CollectOptions o;
+             o.teacher = teacher_options(s, strategy, max_full_putts, 600, 0.004, 0.03);
+             o.teacher.learn_speed = region.learn_speed;
+             o.teacher.fixed_speed = region.speed;
+             o.seed = seed;
+             o.threads = threads;
+             o.resume = resume;
+             const auto holes = region.collection_points();
+             py::gil_scoped_release release;
+             return experiments::collect(s, holes, o, out).examples;
+           },
+           py::arg("out"), py::arg("situations") = "", py::arg("strategy") = "", py::arg("max_full_putts") = 40,
+           py::arg("seed") = 1, py::arg("threads") = 0, py::arg("resume") = false,
+           "The teacher collects a data set at the region's collection points (or a --situations spec) into "
+           "the CSV `out`, as `minigolf collect` does (resumable); returns the examples in index order. "
+           "Releases the GIL.")
       .def("evaluate",
            [](const system::System& s, const learning::Model& model, int situations, std::uint64_t seed, int threads,
               bool oracle, const std::string& region_spec) {

@@ -258,3 +258,11 @@ def test_a_data_of_another_world_is_refused(flat):
     d = flat.arm_world.make_data()
     with pytest.raises(ValueError, match="another world"):
         flat.ball_world.step(d)
+
+
+def test_collect_equals_the_cli_file(flat, tmp_path):
+    spec = "list:1.9,0.05;2.0,-0.05"
+    cli("collect", "--field", "flat", "--situations", spec, "--max-full-putts", "12", "-o", str(tmp_path / "cli.csv"))
+    examples = flat.collect(str(tmp_path / "py.csv"), situations=spec, max_full_putts=12)
+    assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
+    assert [list(e.hole) for e in examples] == [[1.9, 0.05], [2.0, -0.05]]
