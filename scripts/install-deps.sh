@@ -11,6 +11,8 @@ packages=(
   python3 python3-numpy python3-sklearn python3-matplotlib python3-pytest
   valgrind  # bench/sim/putt_overhead.sh counts instructions with callgrind
   libglfw3-dev xvfb xauth ffmpeg  # src/viz: view, render (GLFW windows; xvfb-run without a screen; MP4)
+  pybind11-dev python3-dev  # the minigolf Python module (docs/python.md)
+  libopenmpi-dev openmpi-bin  # MPI scale-out (docs/scale-out.md)
 )
 
 missing=()

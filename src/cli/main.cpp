@@ -9,8 +9,11 @@
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "system/distributed.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   CLI::App app{"minigolf: a simulated Barrett WAM that learns to putt"};
   app.require_subcommand(1);
   mg::cli::add_field_commands(app);
@@ -38,4 +41,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  mg::system::ProcessGroup processes(argc, argv);  // an MPI run under mpirun / srun
+  return processes.finish(run(argc, argv));
 }

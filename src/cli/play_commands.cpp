@@ -28,6 +28,7 @@
 #include "experiments/sweep.hpp"
 #include "learning/learner.hpp"
 #include "selfteach/self_teach.hpp"
+#include "system/distributed.hpp"
 #include "system/parallel.hpp"
 
 namespace mg::cli {
@@ -64,6 +65,7 @@ std::vector<double> parse_range(const std::string& what, const std::string& text
 
 /// Runs scripts/plots/plot.py with `args` (already quoted); throws on failure.
 void run_plot(const std::string& args) {
+  if (!system::is_root_process()) return;  // one process draws (MPI)
   const std::filesystem::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";
   const std::string command = "/usr/bin/python3 " + shell_quote(script.string()) + " " + args + " 1>&2";
   if (std::system(command.c_str()) != 0) throw Error(fmt::format("--plot: {} failed", script.string()));

@@ -17,6 +17,7 @@
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "experiments/launch_study.hpp"
+#include "system/distributed.hpp"
 #include "system/system.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
@@ -144,7 +145,7 @@ void add_study_commands(CLI::App& app) {
     const std::string markdown = experiments::launch_study_markdown(r);
     write_file_atomic(dir / "launch_error.csv", experiments::launch_study_csv(r));
     write_file_atomic(dir / "launch_error.md", markdown);
-    if (o->plot) {
+    if (o->plot && system::is_root_process()) {  // one process draws (MPI)
       const std::filesystem::path script =
           data_dir().parent_path() / "scripts" / "plot_launch_error.py";
       const std::string command = "/usr/bin/python3 " + shell_quote(script.string()) + " " +

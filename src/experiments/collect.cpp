@@ -11,7 +11,8 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
-#include "system/parallel.hpp"
+#include "experiments/wire.hpp"
+#include "system/distributed.hpp"
 
 namespace mg::experiments {
 namespace {
@@ -131,7 +132,7 @@ int repair_continuity(const system::System& system, const CollectOptions& option
   }
   if (jobs.empty()) return 0;
   std::vector<teacher::Example> fresh(jobs.size());
-  system::parallel_for(system, static_cast<int>(jobs.size()), options.threads, [&](int k, system::SystemData& data) {
+  system::distributed_for(system, fresh, options.threads, [&](int k, system::SystemData& data) {
     teacher::TeacherOptions t = options.teacher;
     t.use_hint = true;
     t.hint = jobs[static_cast<std::size_t>(k)].hint;
@@ -190,8 +191,8 @@ CollectResult collect(const system::System& system, const std::vector<std::array
   int finished = result.resumed;
   const int total = static_cast<int>(holes.size());
   if (!todo.empty()) write_file_atomic(out, format_file(settings, done, system.field()));  // the pass reruns
-  system::parallel_for(
-      system, static_cast<int>(todo.size()), options.threads,
+  system::distributed_for(
+      system, fresh, options.threads,
       [&](int k, system::SystemData& data) {
         const int i = todo[static_cast<std::size_t>(k)];
         fresh[static_cast<std::size_t>(k)] =
@@ -200,7 +201,7 @@ CollectResult collect(const system::System& system, const std::vector<std::array
       [&](int k) {
         const teacher::Example& e = fresh[static_cast<std::size_t>(k)];
         done[todo[static_cast<std::size_t>(k)]] = e;
-        write_file_atomic(out, format_file(settings, done, system.field()));
+        if (system::is_root_process()) write_file_atomic(out, format_file(settings, done, system.field()));
         if (progress) progress(++finished, total, e);
       });
   if (repaired < 0 || !todo.empty()) {  // a finished file has had its pass: resuming it changes nothing

@@ -12,6 +12,8 @@
 #include "selfteach/hindsight.hpp"
 #include "stats/gpr.hpp"
 #include "system/parallel.hpp"
+#include "experiments/wire.hpp"
+#include "system/distributed.hpp"
 
 namespace mg::experiments {
 
@@ -114,8 +116,8 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
   const auto& c = system.config();
   const int n = static_cast<int>(holes.size());
   int done = 0;
-  system::parallel_for(
-      system, n, options.threads,
+  system::distributed_for(
+      system, e.rows, options.threads,
       [&](int i, system::SystemData& data) {
         SituationResult& r = e.rows[static_cast<std::size_t>(i)];
         r.hole = holes[static_cast<std::size_t>(i)];

@@ -1,6 +1,7 @@
 #include "experiments/launch_study.hpp"
 
-#include "system/parallel.hpp"
+#include "experiments/wire.hpp"
+#include "system/distributed.hpp"
 
 #include <cmath>
 #include <limits>
@@ -129,7 +130,7 @@ LaunchStudyResult run_launch_study(const system::System& system, const LaunchStu
       h.launch_error_deg = h.club_speed_error = h.launch_club_ratio = nan;
     }
   };
-  system::parallel_for(system, static_cast<int>(result.hits.size()), threads, job, [&](int index) {
+  system::distributed_for(system, result.hits, threads, job, [&](int index) {
     if (progress) progress(result.hits[static_cast<std::size_t>(index)]);
   });
   result.summary = summarize_launch_hits(options.angles_deg, options.speed, result.hits);

@@ -22,7 +22,8 @@
 #include "experiments/sweep.hpp"
 #include "learning/dataset.hpp"
 #include "learning/learner.hpp"
-#include "system/parallel.hpp"
+#include "experiments/wire.hpp"
+#include "system/distributed.hpp"
 
 namespace mg::experiments {
 namespace {
@@ -164,7 +165,7 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
   nlohmann::json run_json = {{"seed", opt.seed}, {"quick", opt.quick}, {"revision", opt.revision},
                              {"threads", system::thread_count(opt.threads)}, {"fields", nlohmann::json::array()}};
   const auto plot = [&](const std::string& args) {
-    if (!opt.plots) return;
+    if (!opt.plots || !system::is_root_process()) return;  // one process draws (MPI)
     const fs::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";
     const std::string cmd = "/usr/bin/python3 " + shell_quote(script.string()) + " " + args + " 1>&2";
     if (std::system(cmd.c_str()) != 0) throw Error(fmt::format("reproduce: plotting failed: {}", args));
@@ -301,8 +302,8 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
     const auto test_holes = f.region.sample(n_test, opt.seed);
     std::vector<teacher::Example> oracle(test_holes.size());
     int oracle_done = 0;
-    system::parallel_for(
-        sys, n_test, opt.threads,
+    system::distributed_for(
+        sys, oracle, opt.threads,
         [&](int i, system::SystemData& d) { oracle[static_cast<std::size_t>(i)] = teacher::teach(sys, d, test_holes[static_cast<std::size_t>(i)], f.teacher); },
         [&](int) {
           if (++oracle_done % 10 == 0 || oracle_done == n_test) say(fmt::format("{}: oracle teacher {}/{}", name, oracle_done, n_test));

@@ -2,7 +2,8 @@
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
-#include "system/parallel.hpp"
+#include "experiments/wire.hpp"
+#include "system/distributed.hpp"
 
 namespace mg::experiments {
 
@@ -18,8 +19,8 @@ std::vector<SweepCell> run_sweep(const system::System& system, const SweepOption
   const int na = static_cast<int>(options.angles.size()), ns = static_cast<int>(options.speeds.size());
   std::vector<SweepCell> cells(static_cast<std::size_t>(na * ns));
   int done = 0;
-  system::parallel_for(
-      system, na * ns, options.threads,
+  system::distributed_for(
+      system, cells, options.threads,
       [&](int i, system::SystemData& data) {
         SweepCell& c = cells[static_cast<std::size_t>(i)];
         c.angle = options.angles[static_cast<std::size_t>(i / ns)];

@@ -14,10 +14,19 @@
 
 namespace mg::system {
 
-/// Threads to use: `requested` if > 0, else all cores.
-inline int thread_count(int requested) {
-  if (requested > 0) return requested;
-  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+/// The default thread count (system/distributed.cpp): the cores this process may run on (its CPU
+/// affinity: taskset, Slurm, mpirun --bind-to), shared with the run's other processes on this
+/// machine when they are not bound to their own cores.
+int default_thread_count();
+
+/// Threads to use: `requested` if > 0, else default_thread_count().
+inline int thread_count(int requested) { return requested > 0 ? requested : default_thread_count(); }
+
+/// True while this thread runs a job of parallel_for: a distributed_for inside a job runs locally
+/// (the outer loop is the one split over processes, or duplicated on each).
+inline bool& inside_parallel_job() {
+  thread_local bool inside = false;
+  return inside;
 }
 
 /// Calls job(i, data) for i in [0, n) on `threads` threads; `done(i)` (optional) is called after
@@ -31,6 +40,12 @@ void parallel_for(const System& system, int n, int threads, Job job,
   std::exception_ptr error;
   std::mutex mutex;
   const auto worker = [&] {
+    const bool was_inside = inside_parallel_job();
+    inside_parallel_job() = true;
+    struct Restore {
+      bool value;
+      ~Restore() { inside_parallel_job() = value; }
+    } restore{was_inside};
     try {
       SystemData data(system);
       for (int i = next++; i < n && !failed; i = next++) {

@@ -1,0 +1,39 @@
+"""minigolf: a simulated Barrett WAM that learns to putt (thesis: Kronander, 2011).
+
+Units everywhere: metres, seconds, radians, m/s. Errors: ValueError (bad input), OSError (files),
+minigolf.NumericalError (an algorithm could not deliver), with the messages of the `minigolf` CLI.
+
+    >>> import minigolf
+    >>> system = minigolf.System(field="flat")
+    >>> r = system.putt(angle=0.0, speed=1.2, ball_only=True)
+    >>> r.sunk, r.trajectory.shape            # doctest: +SKIP
+
+The Gymnasium-style environment is `minigolf.env.PuttEnv`.
+"""
+from ._minigolf import (  # noqa: F401
+    Data,
+    Evaluation,
+    Example,
+    Field,
+    HittingModel,
+    Model,
+    NumericalError,
+    PuttResult,
+    Situations,
+    System,
+    SystemData,
+    World,
+    load_dataset,
+    mpi_built,
+    train,
+)
+
+load_model = Model.load
+
+
+def putt(angle, speed, field="flat", ball_only=False, **kwargs):
+    """One putt on a fresh System of `field` (see System.putt; build a System to putt many times)."""
+    return System(field=field).putt(angle, speed, ball_only=ball_only, **kwargs)
+
+
+from . import env  # noqa: E402,F401

@@ -1,0 +1,268 @@
+"""The minigolf Python module against the CLI and against itself (tests/python)."""
+import json
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import minigolf
+from conftest import BINARY, ROOT
+
+
+def cli(*args, check=True):
+    r = subprocess.run([BINARY, *args], capture_output=True, text=True, timeout=600)
+    if check and r.returncode != 0:
+        raise AssertionError(f"minigolf {' '.join(args)} failed: {r.stderr}")
+    return r
+
+
+def cli_error(*args):
+    """The CLI's one-line message for a bad input (after 'minigolf: error: ')."""
+    r = cli(*args, check=False)
+    assert r.returncode == 2, r
+    line = r.stderr.strip()
+    assert line.startswith("minigolf: error: ") and "\n" not in line, line
+    return line[len("minigolf: error: "):]
+
+
+def as_json(d):
+    return json.loads(json.dumps(d))  # tuples -> lists, as the CLI's JSON
+
+
+@pytest.fixture(scope="module")
+def flat():
+    return minigolf.System(field="flat")
+
+
+def test_ball_putt_equals_cli_json_bit_for_bit(flat):
+    for angle, speed in [(0.0, 1.3), (0.013, 1.1), (-0.05, 2.2)]:
+        ours = flat.putt(angle, speed, ball_only=True, record_interval=0.0).to_dict()
+        theirs = json.loads(cli("putt", "--field", "flat", "--angle", repr(angle), "--speed", repr(speed),
+                                "--ball-only", "--json").stdout)
+        assert as_json(ours) == theirs  # floats compare exactly (shortest round-trip JSON)
+        # recording a trajectory changes nothing
+        recorded = flat.putt(angle, speed, ball_only=True, record_interval=0.01)
+        assert as_json(recorded.to_dict()) == theirs
+        traj = recorded.trajectory
+        assert traj.ndim == 2 and traj.shape[1] == 7 and traj.shape[0] > 10
+        assert np.all(np.diff(traj[:, 0]) > 0)
+        assert abs(traj[0, 1] - flat.field.tee[0]) < 1e-9 and abs(traj[0, 2] - flat.field.tee[1]) < 1e-9
+
+
+def test_arm_putt_equals_cli_json_bit_for_bit(flat):
+    angle, speed = 0.02, 1.2
+    ours = as_json(flat.putt(angle, speed).to_dict())
+    theirs = json.loads(cli("putt", "--field", "flat", "--angle", repr(angle), "--speed", repr(speed),
+                            "--json").stdout)
+    ours.pop("timing"), theirs.pop("timing")  # wall-clock times of the core update
+    assert ours == theirs
+    assert ours["launch"]["speed"] > 0.5
+
+
+def test_putt_on_another_hole_and_field():
+    hill = minigolf.System(field="regular-hill")
+    r = hill.putt(0.0, 1.5, hole=(1.8, 0.1), ball_only=True)
+    theirs = json.loads(cli("putt", "--field", "regular-hill", "--hole", "1.8,0.1", "--angle", "0",
+                            "--speed", "1.5", "--ball-only", "--json").stdout)
+    assert as_json(r.to_dict()) == theirs
+
+
+def test_views_alias_the_live_data(flat):
+    data = flat.make_data()
+    qpos = data.ball.qpos  # taken before the putt
+    bq = flat.ball_world.ball_qpos
+    r = flat.putt(0.0, 1.0, ball_only=True, data=data)
+    assert qpos[bq] == r.rest_position[0] and qpos[bq + 1] == r.rest_position[1]  # it saw the putt
+    qpos[bq] = 0.5  # and a write goes into the mjData
+    assert data.ball.qpos[bq] == 0.5
+
+    world = flat.ball_world
+    d = world.make_data()
+    q, v = d.qpos, d.qvel
+    z0 = q[bq + 2]
+    q[bq + 2] = z0 + 0.05  # lift the ball: it falls under gravity
+    t0 = d.time
+    world.step(d, 100)
+    assert d.time == pytest.approx(t0 + 100 * world.timestep)
+    assert v[flat.ball_world.ball_dof + 2] < -0.5  # the view saw the fall: about -g t
+    world.reset(d)
+    assert q[bq + 2] == z0 and d.time == 0.0
+
+    masses = flat.arm_world.model_body_mass  # read-only view of the shared model
+    assert masses.shape == (flat.arm_world.nbody,)
+    assert masses[flat.arm_world.body_id("ball")] == pytest.approx(flat.field.ball_mass)
+    with pytest.raises(ValueError):
+        masses[0] = 1.0
+    assert d.xpos.shape == (world.nbody, 3)
+
+
+def test_bad_arguments_raise_the_cli_messages(flat):
+    msg = cli_error("putt", "--field", "no-such-field", "--angle", "0", "--speed", "1", "--ball-only")
+    with pytest.raises(ValueError) as e:
+        minigolf.System(field="no-such-field")
+    assert str(e.value) == msg
+
+    msg = cli_error("putt", "--field", "flat", "--angle", "0", "--speed", "9")
+    with pytest.raises(ValueError) as e:
+        flat.putt(0.0, 9.0)
+    assert str(e.value) == msg
+
+    msg = cli_error("putt", "--field", "flat", "--hole", "9,0", "--angle", "0", "--speed", "1", "--ball-only")
+    with pytest.raises(ValueError) as e:
+        flat.putt(0.0, 1.0, hole=(9.0, 0.0), ball_only=True)
+    assert str(e.value) == msg
+
+    msg = cli_error("evaluate", "--field", "flat", "--model", "/nonexistent/model.json")
+    with pytest.raises(OSError) as e:
+        minigolf.Model.load("/nonexistent/model.json")
+    assert str(e.value) == msg
+
+    with pytest.raises(ValueError, match="method"):
+        minigolf.train(np.zeros((3, 2)), np.zeros((3, 2)), method="svm")
+
+
+def test_long_calls_release_the_gil(flat):
+    # While one thread putts, the interpreter keeps running Python code in another ...
+    ticks = 0
+    worker = threading.Thread(target=lambda: [flat.putt(0.0, 2.5, ball_only=True) for _ in range(8)])
+    worker.start()
+    while worker.is_alive():
+        ticks += 1
+        time.sleep(0.001)
+    assert ticks > 20
+    # ... and two threads are inside putts at the same time (with the GIL held they never would be,
+    # whatever the number of cores).
+    intervals = [[], []]
+
+    def run(k):
+        data = flat.make_data()
+        for i in range(10):
+            t = time.perf_counter()
+            flat.putt(0.001 * i, 2.0, ball_only=True, data=data, record_interval=0.0)
+            intervals[k].append((t, time.perf_counter()))
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join()
+    overlap = sum(max(0.0, min(b1, b2) - max(a1, a2)) for a1, b1 in intervals[0] for a2, b2 in intervals[1])
+    busy = sum(b - a for a, b in intervals[0])
+    assert overlap > 0.5 * busy, (overlap, busy)
+
+
+def putts(system, n, threads=1):
+    def run():
+        data = system.make_data()
+        for k in range(n):
+            system.putt(0.001 * k, 2.0, ball_only=True, data=data, record_interval=0.0)
+    pool = [threading.Thread(target=run) for _ in range(threads)]
+    t = time.perf_counter()
+    for th in pool:
+        th.start()
+    for th in pool:
+        th.join()
+    return time.perf_counter() - t
+
+
+def test_two_threads_finish_faster_than_twice_one(flat):
+    # Python threads against the library's own pool doing the same (1 thread: n putts; 2 threads:
+    # 2n), interleaved, medians of three: the machine is shared by other jobs.
+    import os
+    if len(os.sched_getaffinity(0)) < 2:
+        pytest.skip("needs 2 cores")
+    n, ours, pool = 12, [], []
+    angles = [0.001 * k for k in range(n)]
+    for _ in range(3):
+        one = putts(flat, n)
+        ours.append(putts(flat, n, threads=2) / one)
+        t = time.perf_counter()
+        flat.sweep(angles, [2.0], ball_only=True, threads=1)
+        single = time.perf_counter() - t
+        t = time.perf_counter()
+        flat.sweep(angles, [2.0, 2.0], ball_only=True, threads=2)
+        pool.append((time.perf_counter() - t) / single)
+    ours, pool = sorted(ours)[1], sorted(pool)[1]
+    if pool > 1.7:
+        pytest.skip(f"this process does not get 2 cores now (the C++ pool's 2 threads: {pool:.2f} x 1 thread's "
+                    f"time for twice the putts; Python threads: {ours:.2f} x)")
+    assert ours < max(1.7, 1.25 * pool), f"two Python threads: {ours:.2f} x one's time (C++ pool: {pool:.2f} x)"
+
+
+def test_one_system_data_per_thread(flat):
+    data = flat.make_data()
+    errors = []
+
+    def run():
+        try:
+            for _ in range(4):
+                flat.putt(0.0, 2.8, ball_only=True, data=data)
+        except RuntimeError as e:
+            errors.append(str(e))
+
+    threads = [threading.Thread(target=run) for _ in range(2)]
+    for th in threads:
+        th.start()
+    for th in threads:
+        th.join()
+    assert all("in use by another thread" in e for e in errors)
+
+
+def test_fields():
+    assert "flat" in minigolf.Field.shipped()
+    f = minigolf.Field.load("regular-hill")
+    h = f.height(np.array([0.0, 1.0, 2.0]), 0.0)
+    assert h.shape == (3,) and h[1] == pytest.approx(f.height(1.0, 0.0))
+    pts = f.situations.collection_points()
+    assert pts.ndim == 2 and pts.shape[1] == 2
+    s = f.situations.sample(5, 3)
+    assert np.array_equal(s, f.situations.sample(5, 3))
+
+
+def test_learners_train_predict_and_files(tmp_path):
+    x, y = minigolf.load_dataset(str(ROOT / "data" / "datasets" / "flat.csv"))
+    assert x.shape[1] == 2 and y.shape[1] == 2 and x.shape[0] == y.shape[0]
+    for method in ["gpr", "gmr", "joint-gmr"]:
+        m = minigolf.train(x, y, method=method, restarts=2, seed=3)
+        mean, std = m.predict(x)
+        assert mean.shape == y.shape and std.shape == y.shape and np.all(std > 0)
+        assert np.sqrt(np.mean((mean[:, 0] - y[:, 0]) ** 2)) < 0.5 * np.std(y[:, 0])
+        path = tmp_path / f"{method}.json"
+        m.save(str(path))
+        again = minigolf.Model.load(str(path))
+        assert again.method == method and again.input_names == ["xi_x", "xi_y"]
+        assert np.array_equal(again.predict(x)[0], mean)
+
+
+def test_learner_equals_cli_train_and_predict(tmp_path):
+    model = tmp_path / "cli.json"
+    cli("train", str(ROOT / "data" / "datasets" / "flat.csv"), "--method", "gpr", "--seed", "1",
+        "-o", str(model))
+    x, y = minigolf.load_dataset(str(ROOT / "data" / "datasets" / "flat.csv"))
+    ours = minigolf.train(x, y, method="gpr", seed=1)
+    assert np.array_equal(ours.predict(x)[0], minigolf.Model.load(str(model)).predict(x)[0])
+
+
+def test_ds_rollout_reaches_the_ball():
+    h = minigolf.HittingModel.load()
+    start = np.array(h.x_star) + np.array([-0.3, 0.05, 0.02])
+    r = h.rollout(angle=0.1, speed=1.5, start=start)
+    assert r["reached"] and r["stop_reason"] == "reached"
+    assert r["x"].shape == (len(r["t"]), 3) and r["position_error"] < 0.005
+    assert np.linalg.norm(r["x"][-1] - np.array(h.x_star)) < 0.02
+
+
+def test_a_data_of_another_world_is_refused(flat):
+    d = flat.arm_world.make_data()
+    with pytest.raises(ValueError, match="another world"):
+        flat.ball_world.step(d)
+
+
+def test_collect_equals_the_cli_file(flat, tmp_path):
+    spec = "list:1.9,0.05;2.0,-0.05"
+    cli("collect", "--field", "flat", "--situations", spec, "--max-full-putts", "12", "-o", str(tmp_path / "cli.csv"))
+    examples = flat.collect(str(tmp_path / "py.csv"), situations=spec, max_full_putts=12)
+    assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
+    assert [list(e.hole) for e in examples] == [[1.9, 0.05], [2.0, -0.05]]
