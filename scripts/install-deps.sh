@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-numpy python3-sklearn python3-matplotlib python3-pytest
   valgrind  # bench/sim/putt_overhead.sh counts instructions with callgrind
+  clang-14 libfuzzer-14-dev  # scripts/fuzz.sh (libFuzzer harnesses, fuzz/)
 )
 
 missing=()

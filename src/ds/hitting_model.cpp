@@ -2,12 +2,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "core/check.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/json_io.hpp"
 #include "stats/gmm_io.hpp"
 
 namespace mg::ds {
@@ -103,19 +105,39 @@ HittingModel fit_hitting_model(const std::vector<Demonstration>& demos, const Hi
     throw InputError(fmt::format("demonstrations: expected at least {} moving samples for {} Gaussians, got {}",
                                  std::max(2 * k, 4), k, n_seds));
 
-  SedsResult seds = fit_seds(data, options.seds);
-  const int kv = options.strength_gaussians > 0 ? options.strength_gaussians : k;
-  if (kv > n_all) throw InputError(fmt::format("strength Gaussians: expected <= {} (samples), got {}", n_all, kv));
-  Rng rng(derive_seed(options.seds.seed, 1));
-  stats::EmOptions em;
-  em.reg_covar = options.seds.covariance_floor;
-  stats::EmResult strength_fit = stats::fit_gmm(strength, kv, rng, em);
-
-  HittingModel model(seds_to_gmm(seds.components), std::move(strength_fit.gmm), summary.x_star, summary.psi0,
+  // A fit on valid demonstrations must not fail: if K components cannot be fitted (the joint
+  // covariance of a component is not positive definite in floating point, the constraints do
+  // not hold, ...), fit K - 1 and say so.
+  const int kv_requested = options.strength_gaussians > 0 ? options.strength_gaussians : k;
+  if (kv_requested > n_all)
+    throw InputError(fmt::format("strength Gaussians: expected <= {} (samples), got {}", n_all, kv_requested));
+  std::vector<std::string> notes;
+  std::optional<HittingModel> fitted;
+  SedsResult seds;
+  int kv = kv_requested;
+  for (int kk = k; kk >= 1 && !fitted; --kk) {
+    SedsOptions so = options.seds;
+    so.gaussians = kk;
+    kv = options.strength_gaussians > 0 ? kv_requested : kk;
+    try {
+      seds = fit_seds(data, so);
+      Rng rng(derive_seed(options.seds.seed, 1));
+      stats::EmOptions em;
+      em.reg_covar = options.seds.covariance_floor;
+      stats::EmResult strength_fit = stats::fit_gmm(strength, kv, rng, em);
+      fitted.emplace(seds_to_gmm(seds.components), std::move(strength_fit.gmm), summary.x_star, summary.psi0,
                      options.settings, options.seds.margin);
+    } catch (const Error& e) {
+      if (kk == 1) throw;
+      notes.push_back(fmt::format("K = {} failed ({}); fitting K = {}", kk, e.what(), kk - 1));
+    }
+  }
+  for (const auto& n : seds.notes) notes.push_back(n);
+  HittingModel model = std::move(*fitted);
   model.provenance = {
       {"objective", to_string(options.seds.objective)},
-      {"gaussians", k},
+      {"gaussians", static_cast<int>(seds.components.size())},
+      {"gaussians_requested", k},
       {"strength_gaussians", kv},
       {"seed", options.seds.seed},
       {"demonstrations", demos.size()},
@@ -127,9 +149,11 @@ HittingModel fit_hitting_model(const std::vector<Demonstration>& demos, const Hi
       {"optimizer", "NLopt LD_SLSQP, analytic gradients"},
       {"optimizer_status", seds.optimizer_status},
   };
+  if (!notes.empty()) model.provenance["fit_notes"] = notes;
   if (report) {
     report->seds = std::move(seds);
     report->samples_used = static_cast<int>(n_seds);
+    report->notes = notes;
     report->summary = summary;
     report->fit_seconds = seconds_since(t0);
   }
@@ -205,14 +229,7 @@ void write_hitting_model(const std::filesystem::path& path, const HittingModel& 
 }
 
 HittingModel read_hitting_model(const std::filesystem::path& path) {
-  const std::string text = read_text_file(path);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: expected a JSON hitting model, got a parse error: {}", path.string(), e.what()));
-  }
-  return hitting_model_from_json(j, path.string());
+  return hitting_model_from_json(read_json_file(path), path.string());
 }
 
 }  // namespace mg::ds
