@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <optional>
 
 #include <fmt/format.h>
@@ -115,21 +116,45 @@ HittingModel fit_hitting_model(const std::vector<Demonstration>& demos, const Hi
   std::optional<HittingModel> fitted;
   SedsResult seds;
   int kv = kv_requested;
+  // Per K: the plain fit; if its model cannot be built, the same fit without the components it
+  // left empty; then a refit with A_k bounded (SedsOptions::max_rate). A fit that works is
+  // never altered.
+  constexpr double kBoundedRate = 500.0;  // [1/s], a 2 ms time constant
+  constexpr double kMinPrior = 1e-6;
   for (int kk = k; kk >= 1 && !fitted; --kk) {
-    SedsOptions so = options.seds;
-    so.gaussians = kk;
     kv = options.strength_gaussians > 0 ? kv_requested : kk;
-    try {
-      seds = fit_seds(data, so);
-      Rng rng(derive_seed(options.seds.seed, 1));
-      stats::EmOptions em;
-      em.reg_covar = options.seds.covariance_floor;
-      stats::EmResult strength_fit = stats::fit_gmm(strength, kv, rng, em);
-      fitted.emplace(seds_to_gmm(seds.components), std::move(strength_fit.gmm), summary.x_star, summary.psi0,
-                     options.settings, options.seds.margin);
-    } catch (const Error& e) {
-      if (kk == 1) throw;
-      notes.push_back(fmt::format("K = {} failed ({}); fitting K = {}", kk, e.what(), kk - 1));
+    Rng rng(derive_seed(options.seds.seed, 1));
+    stats::EmOptions em;
+    em.reg_covar = options.seds.covariance_floor;
+    const stats::Gmm strength_gmm = stats::fit_gmm(strength, kv, rng, em).gmm;
+    std::string why;
+    std::exception_ptr first_error;
+    bool plain_fit = false;  // attempt 0 got as far as a SEDS result
+    for (int attempt = 0; attempt < 3 && !fitted; ++attempt) {
+      SedsOptions so = options.seds;
+      so.gaussians = kk;
+      if (attempt == 2) so.max_rate = kBoundedRate;
+      if (attempt == 1 && !plain_fit) continue;
+      try {
+        if (attempt != 1) seds = fit_seds(data, so);
+        if (attempt == 0) plain_fit = true;
+        if (attempt >= 1) drop_empty_components(seds, kMinPrior);
+        if (attempt == 1 && seds.notes.empty()) continue;  // nothing to drop: go to the bounded refit
+        fitted.emplace(seds_to_gmm(seds.components), strength_gmm, summary.x_star, summary.psi0, options.settings,
+                       options.seds.margin);
+        if (attempt == 2)
+          notes.push_back(fmt::format("K = {}: refitted with |A_ij| <= {:g} 1/s ({})", kk, kBoundedRate, why));
+      } catch (const Error& e) {
+        if (why.empty()) {
+          why = e.what();
+          first_error = std::current_exception();
+        }
+        seds.notes.clear();
+      }
+    }
+    if (!fitted) {
+      if (kk == 1) std::rethrow_exception(first_error);
+      notes.push_back(fmt::format("K = {} failed ({}); fitting K = {}", kk, why, kk - 1));
     }
   }
   for (const auto& n : seds.notes) notes.push_back(n);

@@ -109,8 +109,7 @@ void SedsOptions::validate() const {
   require_positive("margin", margin);
   require_in_range("optimizer_margin", optimizer_margin, margin, 1e6);
   require_positive("covariance_floor", covariance_floor);
-  require_in_range("max_rate", max_rate, 1.0, 1e6);
-  require_in_range("min_prior", min_prior, 0.0, 0.1);
+  if (max_rate != 0.0) require_in_range("max_rate", max_rate, 1.0, 1e6);
 }
 
 double stability_eigenvalue(const Mat3& a) {
@@ -377,7 +376,7 @@ std::vector<SedsComponent> seds_initial_guess(const SedsData& data, const SedsOp
     // Inside the optimiser's box (|A_ij| <= max_rate): a positive scale keeps A + A^T negative
     // definite; re-projecting adds at most 2 delta to the diagonal.
     const double biggest = c.a.cwiseAbs().maxCoeff();
-    if (biggest > 0.5 * options.max_rate) {
+    if (options.max_rate > 0.0 && biggest > 0.5 * options.max_rate) {
       c.a *= 0.5 * options.max_rate / biggest;
       const Mat3 s2 = 0.5 * (c.a + c.a.transpose());
       Eigen::SelfAdjointEigenSolver<Mat3> e2(s2);
@@ -463,6 +462,31 @@ std::string nlopt_status_name(nlopt::result r) {
 
 }  // namespace
 
+void drop_empty_components(SedsResult& result, double min_prior) {
+  if (result.components.size() > 1) {
+    std::vector<SedsComponent> kept;
+    for (std::size_t k = 0; k < result.components.size(); ++k) {
+      if (result.components[k].prior >= min_prior) {
+        kept.push_back(result.components[k]);
+      } else {
+        result.notes.push_back(fmt::format("dropped SEDS component {} of {} (prior {:.2g} < {:g}: no data left in it)", k,
+                                           result.components.size(), result.components[k].prior, min_prior));
+      }
+    }
+    if (kept.empty()) {
+      kept.push_back(*std::max_element(result.components.begin(), result.components.end(),
+                                       [](const auto& a, const auto& b) { return a.prior < b.prior; }));
+      result.notes.clear();
+    }
+    if (kept.size() < result.components.size()) {
+      double total = 0.0;
+      for (const auto& c : kept) total += c.prior;
+      for (auto& c : kept) c.prior /= total;
+      result.components = std::move(kept);
+    }
+  }
+}
+
 SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
   options.validate();
   if (!data.y.allFinite() || !data.ydot.allFinite()) throw InputError("SEDS data: expected finite samples");
@@ -480,7 +504,7 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
   nlopt::opt opt(nlopt::LD_SLSQP, static_cast<unsigned>(p0.size()));
   opt.set_min_objective(nlopt_objective, &ctx);
   opt.add_inequality_mconstraint(nlopt_constraints, &ctx, std::vector<double>(static_cast<std::size_t>(options.gaussians), 1e-9));
-  {
+  if (options.max_rate > 0.0) {
     std::vector<double> lower(p0.size(), -HUGE_VAL), upper(p0.size(), HUGE_VAL);
     for (int k = 0; k < options.gaussians; ++k)
       for (int j = 0; j < 9; ++j) {
@@ -540,30 +564,6 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
       auto& c = result.components[k];
       c.c /= std::max(weight[k], 1e-12);
       c.c.diagonal().array() += std::max(options.covariance_floor, 1e-4);
-    }
-  }
-
-  // Drop the components the data left empty (see SedsOptions::min_prior).
-  if (result.components.size() > 1) {
-    std::vector<SedsComponent> kept;
-    for (std::size_t k = 0; k < result.components.size(); ++k) {
-      if (result.components[k].prior >= options.min_prior) {
-        kept.push_back(result.components[k]);
-      } else {
-        result.notes.push_back(fmt::format("dropped SEDS component {} of {} (prior {:.2g} < {:g}: no data left in it)", k,
-                                           result.components.size(), result.components[k].prior, options.min_prior));
-      }
-    }
-    if (kept.empty()) {
-      kept.push_back(*std::max_element(result.components.begin(), result.components.end(),
-                                       [](const auto& a, const auto& b) { return a.prior < b.prior; }));
-      result.notes.clear();
-    }
-    if (kept.size() < result.components.size()) {
-      double total = 0.0;
-      for (const auto& c : kept) total += c.prior;
-      for (auto& c : kept) c.prior /= total;
-      result.components = std::move(kept);
     }
   }
 

@@ -64,14 +64,12 @@ struct SedsOptions {
   double margin = 1e-4;                                  ///< required: lambda_max(A+A^T) <= -margin [1/s]
   double optimizer_margin = 1e-2;                        ///< margin used inside the optimiser (stricter) [1/s]
   double covariance_floor = 1e-6;                        ///< added to every covariance diagonal (units^2)
-  /// Bound on every entry of A_k [1/s] (box constraint in the optimiser). Without it the
-  /// optimiser drives A_k of little-used components (and of clean, noise-free data) to 1e2..1e6,
-  /// and the joint covariance C_k + A_k Sigma_k A_k^T loses positive definiteness to round-off.
-  /// 500 1/s is a time constant of 2 ms, far faster than any hitting motion.
-  double max_rate = 500.0;
-  /// Components whose prior ends below this are dropped after the fit (they carry no data and
-  /// their parameters are whatever the optimiser left there).
-  double min_prior = 1e-6;
+  /// Bound on every entry of A_k [1/s] (box constraint in the optimiser; 0 = none). Without it
+  /// the optimiser can drive A_k of little-used components (and of clean, noise-free data) to
+  /// 1e2..1e6, and the joint covariance C_k + A_k Sigma_k A_k^T loses positive definiteness to
+  /// round-off. The hitting-model fit retries with 500 1/s (a 2 ms time constant) when that
+  /// happens (see fit_hitting_model).
+  double max_rate = 0.0;
   void validate() const;
 };
 
@@ -110,6 +108,11 @@ Eigen::Vector3d seds_velocity(const std::vector<SedsComponent>& components, cons
 /// Initial feasible guess: k-means + EM over (y, ydot) (mg::stats::fit_gmm), then each A_k is
 /// projected onto the constraint set (symmetric part's eigenvalues clamped to <= -delta).
 std::vector<SedsComponent> seds_initial_guess(const SedsData& data, const SedsOptions& options);
+
+/// Drops the components whose prior is below `min_prior` (they carry no data; their parameters
+/// are whatever the optimiser left there) and renormalises; keeps at least the largest one.
+/// Appends one line per dropped component to `result.notes`.
+void drop_empty_components(SedsResult& result, double min_prior);
 
 /// Full fit: initial guess, NLopt SLSQP with analytic gradients, then a hard re-check of the
 /// constraints (NumericalError if any `lambda_max(A_k + A_k^T) > -margin`).

@@ -360,9 +360,6 @@ Predictions predict(const Model& m, const Eigen::MatrixXd& queries) {
   if (queries.cols() != ni)
     throw InputError(fmt::format("predict: queries: expected {} input columns, got {}", ni, queries.cols()));
   if (!queries.allFinite()) throw InputError("predict: queries: expected finite values");
-  if (queries.size() > 0 && queries.cwiseAbs().maxCoeff() > kMaxDatasetValue)
-    throw InputError(fmt::format("predict: queries: expected |values| <= {:g}, got {:g}", kMaxDatasetValue,
-                                 queries.cwiseAbs().maxCoeff()));
   const Eigen::Index n = queries.rows();
   Predictions p;
   p.mean.resize(n, no);
