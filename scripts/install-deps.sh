@@ -13,6 +13,7 @@ packages=(
   libglfw3-dev xvfb xauth ffmpeg  # src/viz: view, render (GLFW windows; xvfb-run without a screen; MP4)
   pybind11-dev python3-dev  # the minigolf Python module (docs/python.md)
   libopenmpi-dev openmpi-bin  # MPI scale-out (docs/scale-out.md)
+  clang-14 libfuzzer-14-dev  # scripts/fuzz.sh (libFuzzer harnesses, fuzz/)
 )
 
 missing=()

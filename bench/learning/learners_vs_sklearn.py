@@ -4,6 +4,8 @@
 Synthetic, seeded "sloped field" data: xi = hole - ball in [0.5, 3] x [-1.2, 1.2] m, the hole is
 uphill towards +y, so the angle bends uphill with distance and the speed grows with distance and
 with the climb; Gaussian noise on both outputs (0.02 rad, 0.03 m/s), like a teacher's examples.
+Sets (--sets): "noisy" (that), "clean" (the same law, noise 1e-3 rad and 1e-3 m/s: nearly
+noise-free), "1d" and "1d-clean" (xi_y = 0: one input, xi_x, noisy / nearly noise-free).
 
 scikit-learn side (Debian's python3-sklearn; run with /usr/bin/python3):
   GPR: GaussianProcessRegressor(C * RBF(ARD) + WhiteKernel, normalize_y=True,
@@ -37,23 +39,25 @@ from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
 from sklearn.mixture import GaussianMixture
 
 NOISE = (0.02, 0.03)
+SETS = {"noisy": (NOISE, 2), "clean": ((1e-3, 1e-3), 2), "1d": (NOISE, 1), "1d-clean": ((1e-3, 1e-3), 1)}
 
 
-def sloped_field(n, rng):
+def sloped_field(n, rng, noise=NOISE, dims=2):
     x = rng.uniform(0.5, 3.0, n)
-    y = rng.uniform(-1.2, 1.2, n)
+    y = rng.uniform(-1.2, 1.2, n) if dims == 2 else np.zeros(n)
     d = np.hypot(x, y)
     angle = np.arctan2(y, x) + 0.25 * np.tanh(d) * np.cos(np.arctan2(y, x)) + 0.1 * np.sin(2.0 * y)
     speed = np.sqrt(1.2 * d + 0.25) + 0.15 * y + 0.05 * np.sin(3.0 * x)
-    angle = angle + rng.normal(0.0, NOISE[0], n)
-    speed = speed + rng.normal(0.0, NOISE[1], n)
-    return np.column_stack([x, y]), np.column_stack([angle, speed])
+    angle = angle + rng.normal(0.0, noise[0], n)
+    speed = speed + rng.normal(0.0, noise[1], n)
+    xi = np.column_stack([x, y]) if dims == 2 else x[:, None]
+    return xi, np.column_stack([angle, speed])
 
 
 def write_csv(path, xi, out):
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["xi_x", "xi_y", "angle", "speed"])
+        w.writerow(["xi_x", "xi_y"][: xi.shape[1]] + ["angle", "speed"])
         for a, b in zip(xi, out):
             w.writerow([repr(float(v)) for v in (*a, *b)])
 
@@ -69,7 +73,7 @@ def sk_gpr(xi, out, xv, restarts, seed):
     t0 = time.perf_counter()
     models = []
     for o in range(out.shape[1]):
-        kernel = ConstantKernel(1.0, (1e-4, 1e4)) * RBF([1.0, 1.0], (1e-2, 1e2)) + WhiteKernel(1e-2, (1e-8, 1e1))
+        kernel = ConstantKernel(1.0, (1e-4, 1e4)) * RBF([1.0] * xi.shape[1], (1e-2, 1e2)) + WhiteKernel(1e-2, (1e-8, 1e1))
         m = GaussianProcessRegressor(kernel, normalize_y=True, n_restarts_optimizer=restarts - 1, random_state=seed)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ConvergenceWarning)
@@ -114,17 +118,18 @@ def sk_gmr(xi, out, xv, k, seed, joint):
         gms = [GaussianMixture(k, covariance_type="full", random_state=seed).fit(np.column_stack([xi, out[:, o]]))
                for o in range(out.shape[1])]
     fit = time.perf_counter() - t0
+    n_in = xi.shape[1]
     if joint:
-        return (*condition(gms[0], xv, 2), fit)
-    parts = [condition(g, xv, 2) for g in gms]
+        return (*condition(gms[0], xv, n_in), fit)
+    parts = [condition(g, xv, n_in) for g in gms]
     return np.column_stack([p[0][:, 0] for p in parts]), np.column_stack([p[1][:, 0] for p in parts]), fit
 
 
-def ours(binary, fit_binary, method, train_csv, query_csv, model, k, restarts, seed, extra=()):
+def ours(binary, fit_binary, method, train_csv, query_csv, model, k, restarts, seed, extra=(), dims=2, cli=False):
     kk = str(k) if method != "gpr" else "0"
-    if extra:  # options only the CLI knows: train with it, time the whole process
+    if extra or cli or dims != 2:  # options only the CLI knows: train with it, time the whole process
         args = [binary, "train", "--method", method, train_csv, "-o", model, "--seed", str(seed), "--restarts",
-                str(restarts), "--gaussians", kk, *extra]
+                str(restarts), "--gaussians", kk, "--inputs", ",".join(["xi_x", "xi_y"][:dims]), *extra]
         t0 = time.perf_counter()
         subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
         fit = time.perf_counter() - t0
@@ -153,47 +158,76 @@ def main():
     ap.add_argument("--validation", type=int, default=300)
     ap.add_argument("--ours-args", default="", help="extra options for `minigolf train`, e.g. '--reg-covar 1e-2'")
     ap.add_argument("--only", default="", help="comma list of methods to run: GPR,GMR,joint GMR")
+    ap.add_argument("--sets", default="noisy", help="comma list of data sets: " + ",".join(SETS))
+    ap.add_argument("--cli", action="store_true", help="train ours with `minigolf train` (no bench binary needed)")
+    ap.add_argument("--check", type=float, default=None, metavar="TOL",
+                    help="exit 1 unless ours' mean MSE is <= (1 + TOL) x scikit-learn's for every "
+                         "(set, N, GMM method, output)")
     a = ap.parse_args()
     sizes = [int(s) for s in a.sizes.split(",")]
 
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for n in sizes:
-            k = 2 if n <= 10 else 3
-            acc = {}
-            for s in range(a.seeds):
-                rng = np.random.default_rng(1000 * n + s)
-                xi, out = sloped_field(n, rng)
-                xv, ov = sloped_field(a.validation, rng)
-                tr, va, model = (os.path.join(tmp, f) for f in ("train.csv", "val.csv", "model.json"))
-                write_csv(tr, xi, out)
-                write_csv(va, xv, ov)
-                extra = a.ours_args.split()
-                jobs = {
-                    ("GPR", "ours"): lambda: ours(a.binary, a.fit_binary, "gpr", tr, va, model, k, a.restarts, s + 1, extra),
-                    ("GPR", "sklearn"): lambda: sk_gpr(xi, out, xv, a.restarts, s),
-                    ("GMR", "ours"): lambda: ours(a.binary, a.fit_binary, "gmr", tr, va, model, k, a.restarts, s + 1, extra),
-                    ("GMR", "sklearn"): lambda: sk_gmr(xi, out, xv, k, s, joint=False),
-                    ("joint GMR", "ours"): lambda: ours(a.binary, a.fit_binary, "joint-gmr", tr, va, model, k, a.restarts, s + 1, extra),
-                    ("joint GMR", "sklearn"): lambda: sk_gmr(xi, out, xv, k, s, joint=True),
-                }
-                only = [m for m in a.only.split(",") if m]
-                runs = {key: job() for key, job in jobs.items() if not only or key[0] in only}
-                for key, (mean, std, fit) in runs.items():
-                    mse, nlpd = scores(ov, mean, std)
-                    acc.setdefault(key, []).append((*mse, *nlpd, fit))
-            for (method, lib), vals in acc.items():
-                v = np.mean(np.array(vals), axis=0)
-                rows.append((n, k, method, lib, *v))
+        for set_name in a.sets.split(","):
+            noise, dims = SETS[set_name]
+            for n in sizes:
+                k = 2 if n <= 10 else 3
+                acc = {}
+                for s in range(a.seeds):
+                    rng = np.random.default_rng(1000 * n + s)
+                    xi, out = sloped_field(n, rng, noise, dims)
+                    xv, ov = sloped_field(a.validation, rng, noise, dims)
+                    tr, va, model = (os.path.join(tmp, f) for f in ("train.csv", "val.csv", "model.json"))
+                    write_csv(tr, xi, out)
+                    write_csv(va, xv, ov)
+                    extra = a.ours_args.split()
 
-    print(f"sloped field, {a.seeds} seeds per size, {a.validation} noisy validation points "
-          f"(noise floor: angle MSE {NOISE[0]**2:.1e}, speed MSE {NOISE[1]**2:.1e}); "
-          f"GPR starts {a.restarts}; fit times in-process, wall clock\n")
-    print("| N | K | method | library | MSE angle [rad^2] | MSE speed [(m/s)^2] | NLPD angle | NLPD speed | fit time [ms] |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    for n, k, method, lib, ma, ms, na, ns, fit in rows:
+                    def mine(method):
+                        return ours(a.binary, a.fit_binary, method, tr, va, model, k, a.restarts, s + 1, extra,
+                                    dims, a.cli)
+
+                    jobs = {
+                        ("GPR", "ours"): lambda: mine("gpr"),
+                        ("GPR", "sklearn"): lambda: sk_gpr(xi, out, xv, a.restarts, s),
+                        ("GMR", "ours"): lambda: mine("gmr"),
+                        ("GMR", "sklearn"): lambda: sk_gmr(xi, out, xv, k, s, joint=False),
+                        ("joint GMR", "ours"): lambda: mine("joint-gmr"),
+                        ("joint GMR", "sklearn"): lambda: sk_gmr(xi, out, xv, k, s, joint=True),
+                    }
+                    only = [m for m in a.only.split(",") if m]
+                    runs = {key: job() for key, job in jobs.items() if not only or key[0] in only}
+                    for key, (mean, std, fit) in runs.items():
+                        mse, nlpd = scores(ov, mean, std)
+                        acc.setdefault(key, []).append((*mse, *nlpd, fit))
+                for (method, lib), vals in acc.items():
+                    v = np.mean(np.array(vals), axis=0)
+                    rows.append((set_name, n, k, method, lib, *v))
+
+    print(f"sloped field, {a.seeds} seeds per size, {a.validation} validation points with the set's noise "
+          f"(noisy: angle {NOISE[0]} rad, speed {NOISE[1]} m/s, noise floor MSE {NOISE[0]**2:.1e}, {NOISE[1]**2:.1e}; "
+          f"clean: 1e-3 and 1e-3); GPR starts {a.restarts}; fit times wall clock "
+          f"({'whole `minigolf train` process' if a.cli or a.ours_args else 'in-process'} for ours)\n")
+    print("| set | N | K | method | library | MSE angle [rad^2] | MSE speed [(m/s)^2] | NLPD angle | NLPD speed | fit time [ms] |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for set_name, n, k, method, lib, ma, ms, na, ns, fit in rows:
         kk = "-" if method == "GPR" else str(k)
-        print(f"| {n} | {kk} | {method} | {lib} | {ma:.3e} | {ms:.3e} | {na:.3f} | {ns:.3f} | {fit*1e3:.1f} |")
+        print(f"| {set_name} | {n} | {kk} | {method} | {lib} | {ma:.3e} | {ms:.3e} | {na:.3f} | {ns:.3f} | {fit*1e3:.1f} |")
+
+    if a.check is None:
+        return 0
+    table = {(r[0], r[1], r[3], r[4]): r[5:7] for r in rows}
+    failures = []
+    for (set_name, n, method, lib), mse in table.items():
+        if lib != "ours" or method == "GPR" or (set_name, n, method, "sklearn") not in table:
+            continue
+        ref = table[(set_name, n, method, "sklearn")]
+        for name, ours_mse, sk_mse in zip(("angle", "speed"), mse, ref):
+            if ours_mse > (1.0 + a.check) * sk_mse:
+                failures.append(f"{set_name} N={n} {method} {name}: ours {ours_mse:.3e} > (1+{a.check}) x sklearn {sk_mse:.3e}")
+    for f in failures:
+        print("FAILED:", f)
+    print(f"check: {len(failures)} of the GMR / joint GMR MSEs worse than scikit-learn's by more than {a.check:.0%}")
+    return 1 if failures else 0
 
 
 if __name__ == "__main__":

@@ -9,6 +9,32 @@
 
 namespace mg::cli {
 
+CLI::Validator finite_number(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double v = 0.0;
+        const char* first = text.data() + (!text.empty() && text.front() == '+' ? 1 : 0);
+        auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
+        if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v) || v < lo ||
+            v > hi)
+          return fmt::format("expected a finite number in [{}, {}], got '{}'", lo, hi, text);
+        return {};
+      },
+      fmt::format("NUMBER in [{}, {}]", lo, hi));
+}
+
+CLI::Validator unsigned_integer(std::uint64_t hi) {
+  return CLI::Validator(
+      [hi](std::string& text) -> std::string {
+        std::uint64_t v = 0;
+        auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || v > hi)
+          return fmt::format("expected an integer in [0, {}], got '{}'", hi, text);
+        return {};
+      },
+      fmt::format("INTEGER in [0, {}]", hi));
+}
+
 double parse_number(const std::string& what, const std::string& text) {
   double v = 0.0;
   const char* first = text.data();

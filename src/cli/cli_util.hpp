@@ -5,7 +5,18 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 namespace mg::cli {
+
+/// The one policy for numbers on the command line: typed CLI11 options with these validators.
+/// A rejected value is a CLI::ValidationError, which `main` reports in one line with exit 2.
+///
+/// A finite number in [lo, hi] (CLI::Range lets NaN through; CLI11 itself parses "nan", "inf").
+CLI::Validator finite_number(double lo, double hi);
+/// A decimal integer in [0, hi]: no sign, no fraction, no exponent (CLI11's own conversion turns
+/// "-1" into 2^64 - 1).
+CLI::Validator unsigned_integer(std::uint64_t hi = UINT64_MAX);
 
 /// Parses the whole of `text` (an optional leading '+') as a finite double; throws `InputError`
 /// naming `what` ("expected a number" / "expected a finite number").

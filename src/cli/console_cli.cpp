@@ -12,6 +12,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "control/module_config.hpp"
 #include "system/session.hpp"
@@ -33,16 +34,17 @@ void add_console_command(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "console", "Run the arm and the minigolf module interactively (commands on standard input)");
-  cmd->add_option("--config", o->config, "Module config YAML (see README: module config)");
+  cmd->add_option("--config", o->config, "Module config YAML (see README: module config)")->check(CLI::ExistingFile);
   cmd->add_option("--field", o->field, "Shipped field name or path (overrides the config)");
   cmd->add_option("--mode", o->mode, "simulator | normal (overrides the config)");
   cmd->add_flag("--realtime", o->realtime,
                 "Three threads paced at 500 Hz by the wall clock (default: lockstep, fast)");
   cmd->add_flag("--vision-sim", o->vision_sim,
                 "Normal mode: publish the simulated ball and hole over loopback UDP to the feed");
-  cmd->add_option("--script", o->script, "Read commands from this file instead of standard input");
+  cmd->add_option("--script", o->script, "Read commands from this file instead of standard input")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--echo", o->echo, "Print every command before its answer");
-  cmd->add_option("--seed", o->seed, "Seed of the vision simulator's noise")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of the vision simulator's noise")->check(unsigned_integer())->capture_default_str();
   cmd->callback([o] {
     control::ModuleConfig config =
         o->config.empty() ? control::ModuleConfig{} : control::load_module_config(o->config);

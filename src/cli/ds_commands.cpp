@@ -11,6 +11,8 @@
 #include "cli/commands.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/json_io.hpp"
+#include "cli/cli_util.hpp"
 #include "ds/demonstrations.hpp"
 #include "ds/hitting_ds.hpp"
 #include "ds/hitting_model.hpp"
@@ -27,20 +29,7 @@ std::filesystem::path resolve_model(const std::string& name) {
 }
 
 Eigen::Vector3d parse_point(const std::string& what, const std::string& text) {
-  std::stringstream ss(text);
-  std::string item;
-  std::vector<double> v;
-  while (std::getline(ss, item, ',')) {
-    try {
-      std::size_t used = 0;
-      const double d = std::stod(item, &used);
-      if (used != item.size() || !std::isfinite(d)) throw std::invalid_argument("bad");
-      v.push_back(d);
-    } catch (const std::exception&) {
-      throw InputError(fmt::format("{}: expected three numbers X,Y,Z, got '{}'", what, text));
-    }
-  }
-  if (v.size() != 3) throw InputError(fmt::format("{}: expected three numbers X,Y,Z, got '{}'", what, text));
+  const auto v = parse_vector<3>(what, text);
   return {v[0], v[1], v[2]};
 }
 
@@ -59,7 +48,7 @@ void add_demos(CLI::App& ds) {
   auto o = std::make_shared<Opts>();
   CLI::App* cmd = ds.add_subcommand("demos", "Generate synthetic human-like hitting demonstrations (CSV)");
   cmd->add_option("-o,--output", o->out, "Output CSV: demo,t,x,y,z,vx,vy,vz (m, s, world frame)")->required();
-  cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Random seed")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--count", o->count, "Number of demonstrations")->capture_default_str();
   cmd->callback([o] {
     ds::DemoGeneratorConfig cfg;
@@ -86,9 +75,9 @@ void add_fit(CLI::App& ds) {
   CLI::App* cmd = ds.add_subcommand("fit", "Fit a hitting model (SEDS + strength GMM) to demonstrations");
   cmd->add_option("demos", o->demos, "Demonstrations CSV")->required();
   cmd->add_option("-o,--output", o->out, "Output hitting model (JSON)")->required();
-  cmd->add_option("--gaussians", o->gaussians, "Number of Gaussians K")->capture_default_str();
+  cmd->add_option("--gaussians", o->gaussians, "Number of Gaussians K")->check(CLI::Range(1, ds::kMaxSedsGaussians))->capture_default_str();
   cmd->add_option("--objective", o->objective, "likelihood | mse")->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Seed of k-means++/EM")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of k-means++/EM")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--max-evaluations", o->max_evaluations, "NLopt objective evaluations at most")->capture_default_str();
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o] {
@@ -124,13 +113,16 @@ void add_fit(CLI::App& ds) {
                      {"mean_path_distance", err.mean_path_distance},
                      {"max_path_distance", err.max_path_distance},
                      {"demos_reached", err.all_reached},
-                     {"demos", demos.size()}};
+                     {"demos", demos.size()},
+                     {"gaussians", rep.seds.components.size()},
+                     {"notes", rep.notes}};
     if (o->json) {
       fmt::print("{}\n", j.dump());
       return;
     }
+    for (const auto& note : rep.notes) fmt::print(stderr, "minigolf: note: {}\n", note);
     fmt::print("wrote {}\n", o->out);
-    fmt::print("  SEDS          K = {}, objective {}, {} samples, {} evaluations, {:.2f} s\n", o->gaussians, o->objective,
+    fmt::print("  SEDS          K = {}, objective {}, {} samples, {} evaluations, {:.2f} s\n", rep.seds.components.size(), o->objective,
                rep.samples_used, rep.seds.evaluations, rep.fit_seconds);
     fmt::print("  objective     {:.6g} -> {:.6g}\n", rep.seds.initial_objective, rep.seds.final_objective);
     fmt::print("  stability     max eigenvalue of A_k + A_k^T = {:.6g} 1/s\n", model.max_eigenvalue());
@@ -154,12 +146,7 @@ void add_check(CLI::App& ds) {
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o] {
     const auto path = resolve_model(o->model);
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(read_text_file(path));
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(fmt::format("{}: expected a JSON hitting model, got a parse error: {}", path.string(), e.what()));
-    }
+    const nlohmann::json j = read_json_file(path);
     // The constraints first (so a violating file is still reported), then the full validation.
     stats::Gmm gmm;
     try {

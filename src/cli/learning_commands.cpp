@@ -1,5 +1,4 @@
 // train | predict | validate: thin wrappers over mg::learning (parse, load, call, print).
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -30,6 +29,7 @@ struct LearnArgs {
   int restarts = 10;
   std::uint64_t seed = 1;
   double reg_covar = 1e-2;
+  CLI::Option* reg_covar_option = nullptr;  ///< given: use reg_covar as is; else chosen by cross-validation
   std::string length_scales, signal_std, noise_std;
   std::string length_scale_bounds, signal_std_bounds, noise_std_bounds;
   bool no_optimize = false;
@@ -38,14 +38,7 @@ struct LearnArgs {
 
 std::vector<double> parse_numbers(const std::string& what, const std::string& text) {
   std::vector<double> out;
-  for (const std::string& cell : parse_names(what, text)) {
-    double v = 0.0;
-    const char* first = cell.data() + (cell.front() == '+' ? 1 : 0);
-    auto [ptr, ec] = std::from_chars(first, cell.data() + cell.size(), v);
-    if (ec != std::errc() || ptr != cell.data() + cell.size() || !std::isfinite(v))
-      throw InputError(fmt::format("{}: expected a finite number, got '{}'", what, cell));
-    out.push_back(v);
-  }
+  for (const std::string& cell : parse_names(what, text)) out.push_back(parse_number(what, cell));
   return out;
 }
 
@@ -67,9 +60,10 @@ void add_learn_options(CLI::App* cmd, LearnArgs& a) {
   cmd->add_option("--max-gaussians", a.max_gaussians, "Largest number of Gaussians tried by --select")
       ->capture_default_str();
   cmd->add_option("--restarts", a.restarts, "GPR optimiser starts / k-means++ seedings")->capture_default_str();
-  cmd->add_option("--seed", a.seed, "Random seed")->capture_default_str();
-  cmd->add_option("--reg-covar", a.reg_covar, "GMM covariance regularisation (standardised units)")
-      ->capture_default_str();
+  cmd->add_option("--seed", a.seed, "Random seed")->check(unsigned_integer())->capture_default_str();
+  a.reg_covar_option = cmd->add_option(
+      "--reg-covar", a.reg_covar,
+      "GMM covariance regularisation (standardised units, > 0); default: chosen from 1e-6..1e-1 by cross-validation");
   cmd->add_option("--length-scales", a.length_scales, "GPR initial length scales: one, or one per input");
   cmd->add_option("--signal-std", a.signal_std, "GPR initial signal std: one, or one per output (output units)");
   cmd->add_option("--noise-std", a.noise_std, "GPR initial noise std: one, or one per output (output units)");
@@ -89,6 +83,7 @@ learning::TrainOptions make_train_options(const LearnArgs& a, std::size_t num_in
   o.restarts = a.restarts;
   o.seed = a.seed;
   o.em.reg_covar = a.reg_covar;
+  o.choose_reg_covar = a.reg_covar_option == nullptr || a.reg_covar_option->count() == 0;
   auto per_output = [&](const std::string& what, const std::string& text) {
     std::vector<double> v = text.empty() ? std::vector<double>{} : parse_numbers(what, text);
     if (!v.empty() && v.size() != 1 && v.size() != num_outputs)

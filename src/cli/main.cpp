@@ -1,7 +1,8 @@
 // The `minigolf` command: parses, loads, calls the library, prints, maps errors to exit codes.
 //
-// Exit codes: 0 success; 2 bad input (unknown name, malformed file, bad number); 1 any other
-// failure; CLI11's own codes (>= 100) for malformed command lines.
+// Exit codes: 0 success; 2 bad input (unknown name, malformed file, bad number, also a number
+// or file option that CLI11 rejects); 1 any other failure; CLI11's own codes (>= 100) for other
+// malformed command lines (unknown option, missing argument).
 #include <cstdio>
 #include <exception>
 
@@ -28,6 +29,12 @@ int run(int argc, char** argv) {
   mg::cli::add_plot_commands(app);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ConversionError& e) {  // a malformed number: bad input like any other
+    fmt::print(stderr, "minigolf: error: {}\n", e.what());
+    return 2;
+  } catch (const CLI::ValidationError& e) {
+    fmt::print(stderr, "minigolf: error: {}\n", e.what());
+    return 2;
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const mg::InputError& e) {

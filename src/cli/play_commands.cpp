@@ -141,7 +141,7 @@ void add_collect(CLI::App& app) {
   cmd->add_option("--strategy", a->strategy, "min-speed | min-angle (default: the field's situations.strategy)");
   cmd->add_option("--situations", a->situations,
                   "Region instead of the field's: line:X0,Y0:X1,Y1:N | grid:X0,X1:Y0,Y1:NX,NY | box:... | list:X,Y;X,Y");
-  cmd->add_option("--seed", a->seed, "Seed (recorded; the teacher is deterministic)")->capture_default_str();
+  cmd->add_option("--seed", a->seed, "Seed (recorded; the teacher is deterministic)")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--max-full-putts", a->max_full_putts, "Full-system putt budget per situation")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
@@ -198,7 +198,7 @@ void add_evaluate(CLI::App& app) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_option("--region", a->situations_spec, "Region instead of the field's (as collect --situations)");
-  cmd->add_option("--seed", a->seed, "Seed of the test situations")->capture_default_str();
+  cmd->add_option("--seed", a->seed, "Seed of the test situations")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--strategy", a->strategy, "The oracle teacher's strategy (default: the field's)");
   cmd->add_flag("--no-oracle", a->no_oracle, "Skip the oracle ceiling (the teacher on every situation)");
   cmd->add_flag("--json", a->json, "Print one JSON object");
@@ -385,7 +385,7 @@ void add_reproduce(CLI::App& app) {
   cmd->add_flag("--quick", o->quick, "30 test situations, 3 learning-curve subsets, 100 arctan splits (under 10 min on 2 cores)");
   cmd->add_option("-o,--output", *out, "Output folder")->capture_default_str();
   cmd->add_option("--threads", o->threads, "Threads (0: all cores; results do not depend on it)")->check(CLI::Range(0, 256));
-  cmd->add_option("--seed", o->seed, "Seed of test situations, splits and subsets")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of test situations, splits and subsets")->check(unsigned_integer())->capture_default_str();
   cmd->add_flag("--collect", o->collect, "Collect the data sets with the teacher instead of using the shipped ones");
   cmd->add_option("--datasets", *datasets, "Folder with <field>.csv and <field>-validation.csv (default: data/datasets)");
   cmd->add_option("--fields", *fields, "Fields, comma-separated")->capture_default_str();

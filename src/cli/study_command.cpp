@@ -58,11 +58,11 @@ void add_study_commands(CLI::App& app) {
   struct Options {
     std::string field = "flat";
     std::string angles = "-10,0,10";
-    std::string hits = "10";
-    std::string speed = "1.0";
-    std::string torque_noise = "0.01";
-    std::string placement_noise = "0.001";
-    std::string seed = "1";
+    int hits = 10;
+    double speed = 1.0;
+    double torque_noise = 0.01;
+    double placement_noise = 0.001;
+    std::uint64_t seed = 1;
     std::string out = "out/study";
     bool json = false;
     bool plot = false;
@@ -77,14 +77,15 @@ void add_study_commands(CLI::App& app) {
       "launch-error", "Launch-angle and hitting-speed error of repeated hits with execution noise (thesis 6.1)");
   cmd->add_option("--field", o->field, "Shipped field name or path to a field file")->capture_default_str();
   cmd->add_option("--angles-deg", o->angles, "Commanded hitting angles [deg], comma-separated")->capture_default_str();
-  cmd->add_option("--hits", o->hits, "Hits per angle")->capture_default_str();
-  cmd->add_option("--speed", o->speed, "Commanded club speed [m/s]")->capture_default_str();
+  cmd->add_option("--hits", o->hits, "Hits per angle")->check(unsigned_integer(100000))->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--speed", o->speed, "Commanded club speed [m/s]")->check(finite_number(-1e6, 1e6))->capture_default_str();
   cmd->add_option("--torque-noise", o->torque_noise,
                   "Joint-torque disturbance std, fraction of each joint's torque limit, per core tick")
-      ->capture_default_str();
+      ->check(finite_number(0.0, 1.0))->capture_default_str();
   cmd->add_option("--placement-noise", o->placement_noise, "Ball placement std per axis [m]")
-      ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Noise seed")->capture_default_str();
+      ->check(finite_number(0.0, 0.05))->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Noise seed")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--out", o->out, "Output directory for launch_error.{csv,md,png}")->capture_default_str();
   cmd->add_option("--config", o->config, "Module config YAML");
   cmd->add_option("--hitting-model", o->hitting_model, "Hitting DS model file (default: the shipped one)");
@@ -97,17 +98,11 @@ void add_study_commands(CLI::App& app) {
     opt.angles_deg.clear();
     for (const std::string& cell : parse_names("--angles-deg", o->angles))
       opt.angles_deg.push_back(parse_number("--angles-deg", cell));
-    const std::uint64_t hits = parse_unsigned("--hits", o->hits);
-    if (hits < 1 || hits > 100000) throw InputError(fmt::format("--hits: expected 1..100000, got {}", o->hits));
-    opt.hits = static_cast<int>(hits);
-    opt.speed = parse_number("--speed", o->speed);
-    opt.torque_noise = parse_number("--torque-noise", o->torque_noise);
-    if (opt.torque_noise < 0.0 || opt.torque_noise > 1.0)
-      throw InputError(fmt::format("--torque-noise: expected 0..1 (fraction of the torque limit), got {}", o->torque_noise));
-    opt.placement_noise = parse_number("--placement-noise", o->placement_noise);
-    if (opt.placement_noise < 0.0 || opt.placement_noise > 0.05)
-      throw InputError(fmt::format("--placement-noise: expected 0..0.05 m, got {}", o->placement_noise));
-    opt.seed = parse_unsigned("--seed", o->seed);
+    opt.hits = o->hits;
+    opt.speed = o->speed;
+    opt.torque_noise = o->torque_noise;
+    opt.placement_noise = o->placement_noise;
+    opt.seed = o->seed;
     if (o->out.empty()) throw InputError("--out: expected a directory, got ''");
 
     const system::System sys(system::load_config(o->config, o->field, o->hitting_model));

@@ -7,7 +7,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -28,27 +27,6 @@
 namespace mg::cli {
 namespace {
 
-// Numbers are taken as text and parsed here, so every bad number (not a number, NaN, out of
-// range) gets the same one-line error and exit code 2.
-double parse_number(const std::string& what, const std::string& text, double lo, double hi) {
-  double v = 0.0;
-  const char* last = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), last, v);
-  if (text.empty() || ec != std::errc{} || ptr != last || !std::isfinite(v) || v < lo || v > hi)
-    throw InputError(
-        fmt::format("{}: expected a number in [{}, {}], got '{}'", what, lo, hi, text));
-  return v;
-}
-
-std::uint64_t parse_count(const std::string& what, const std::string& text, std::uint64_t hi) {
-  std::uint64_t v = 0;
-  const char* last = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), last, v);
-  if (text.empty() || ec != std::errc{} || ptr != last || v > hi)
-    throw InputError(fmt::format("{}: expected an integer in [0, {}], got '{}'", what, hi, text));
-  return v;
-}
-
 enum class BadKind { kMalformed, kOutOfRange, kRepeated };
 
 }  // namespace
@@ -56,17 +34,17 @@ enum class BadKind { kMalformed, kOutOfRange, kRepeated };
 void add_vision_commands(CLI::App& app) {
   struct Options {
     std::string to = "127.0.0.1:47001";
-    std::string rate = "60";
-    std::string duration = "2";
+    double rate = 60.0;
+    double duration = 2.0;
     std::string field = "flat";
     std::string hole;
-    std::string angle;
-    std::string speed;
-    std::string noise = "0";
-    std::string latency = "0";
-    std::string dropout = "0";
-    std::string seed = "1";
-    std::string inject_bad = "0";
+    double angle = 0.0;
+    double speed = 0.0;
+    double noise = 0.0;
+    double latency = 0.0;
+    double dropout = 0.0;
+    std::uint64_t seed = 1;
+    std::uint64_t inject_bad = 0;
     bool fast = false;
   };
   auto o = std::make_shared<Options>();
@@ -74,43 +52,45 @@ void add_vision_commands(CLI::App& app) {
       "vision-sim", "Publish simulated ball and hole positions over UDP (minigolf-vision/1)");
   cmd->add_option("--to", o->to, "Destination HOST:PORT")->capture_default_str();
   cmd->add_option("--rate", o->rate, "Messages per second [Hz], [0.001, 1000]")
-      ->capture_default_str();
+      ->check(finite_number(1e-3, 1000.0))->capture_default_str();
   cmd->add_option("--duration", o->duration, "Publish for this long [s], [0.001, 3600]")
-      ->capture_default_str();
+      ->check(finite_number(1e-3, 3600.0))->capture_default_str();
   cmd->add_option("--field", o->field, "Shipped field name or path to a field file")
       ->capture_default_str();
   cmd->add_option("--hole", o->hole, "Hole centre X,Y [m] (default: the field's)");
-  cmd->add_option("--angle", o->angle, "Putt angle [rad]: publish a moving ball (needs --speed)");
-  cmd->add_option("--speed", o->speed, "Putt speed [m/s]: publish a moving ball (needs --angle)");
+  CLI::Option* angle_opt = cmd->add_option("--angle", o->angle, "Putt angle [rad]: publish a moving ball (needs --speed)")
+                               ->check(finite_number(-3.15, 3.15));
+  CLI::Option* speed_opt = cmd->add_option("--speed", o->speed, "Putt speed [m/s]: publish a moving ball (needs --angle)")
+                               ->check(finite_number(1e-3, 15.0));
   cmd->add_option("--noise", o->noise, "Gaussian noise std on every coordinate [m], [0, 0.5]")
-      ->capture_default_str();
+      ->check(finite_number(0.0, 0.5))->capture_default_str();
   cmd->add_option("--latency", o->latency, "Delay between capture and send [s], [0, 5]")
-      ->capture_default_str();
+      ->check(finite_number(0.0, 5.0))->capture_default_str();
   cmd->add_option("--dropout", o->dropout, "Probability of not sending a message, [0, 1]")
-      ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Seed for noise, dropout")->capture_default_str();
+      ->check(finite_number(0.0, 1.0))->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed for noise, dropout")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--inject-bad", o->inject_bad,
                   "Replace every Nth message by a malformed, out-of-range or repeated one, in "
                   "turn (0 = never)")
-      ->capture_default_str();
+      ->check(unsigned_integer(1'000'000'000))->capture_default_str();
   cmd->add_flag("--fast", o->fast, "Send as fast as possible (no pacing, no latency; for tests)");
-  cmd->callback([o] {
+  cmd->callback([o, angle_opt, speed_opt] {
     // Validate every number before touching the network or the simulator.
     const auto [host, port] = perception::parse_host_port("--to", o->to);
-    const double rate = parse_number("--rate", o->rate, 1e-3, 1000.0);
-    const double duration = parse_number("--duration", o->duration, 1e-3, 3600.0);
-    const double noise = parse_number("--noise", o->noise, 0.0, 0.5);
-    const double latency = parse_number("--latency", o->latency, 0.0, 5.0);
-    const double dropout = parse_number("--dropout", o->dropout, 0.0, 1.0);
-    const std::uint64_t seed = parse_count("--seed", o->seed, UINT64_MAX);
-    const std::uint64_t inject_bad = parse_count("--inject-bad", o->inject_bad, 1'000'000'000);
-    if (o->angle.empty() != o->speed.empty())
+    const double rate = o->rate;
+    const double duration = o->duration;
+    const double noise = o->noise;
+    const double latency = o->latency;
+    const double dropout = o->dropout;
+    const std::uint64_t seed = o->seed;
+    const std::uint64_t inject_bad = o->inject_bad;
+    if ((angle_opt->count() == 0) != (speed_opt->count() == 0))
       throw InputError("vision-sim: --angle and --speed go together (a moving ball); got only one");
-    const bool moving = !o->speed.empty();
+    const bool moving = speed_opt->count() > 0;
     sim::PuttRequest request;
     if (moving) {
-      request.angle = parse_number("--angle", o->angle, -3.15, 3.15);
-      request.speed = parse_number("--speed", o->speed, 1e-3, 15.0);
+      request.angle = o->angle;
+      request.speed = o->speed;
       request.max_duration = std::clamp(duration, 0.01, 600.0);
       request.record_interval = 0.005;
       request.validate();

@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
+#include "core/io.hpp"
 
 namespace mg::control {
 
@@ -208,11 +209,7 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
 }
 
 ModuleConfig load_module_config(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError(fmt::format("cannot read module config '{}'", path.string()));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_module_config(ss.str(), path.string());
+  return parse_module_config(read_text_file(path), path.string());
 }
 
 }  // namespace mg::control

@@ -131,7 +131,22 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
 
 std::filesystem::path data_dir() {
   if (const char* env = std::getenv("MINIGOLF_DATA_DIR"); env && *env) return env;
-  return MINIGOLF_DATA_DIR;
+  // A data folder is one with the shipped fields in it.
+  auto usable = [](const std::filesystem::path& p) {
+    std::error_code ec;
+    return std::filesystem::is_directory(p / "fields", ec);
+  };
+  static const std::filesystem::path found = [&] {
+    // Installed or copied (`cmake --install`: bin/minigolf + share/minigolf/data): the data
+    // beside the executable wins over the source tree recorded at build time.
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec)
+      for (const auto& c : {exe.parent_path() / ".." / "share" / "minigolf" / "data", exe.parent_path() / "data"})
+        if (usable(c)) return c.lexically_normal();
+    return std::filesystem::path(MINIGOLF_DATA_DIR);
+  }();
+  return found;
 }
 
 std::string shell_quote(const std::string& s) {

@@ -14,7 +14,8 @@ std::string read_text_file(const std::filesystem::path& path);
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);
 
 /// Directory holding the shipped data (fields, demonstrations, models): `$MINIGOLF_DATA_DIR`
-/// if set, else the source tree's `data/` recorded at build time.
+/// if set, else `<exe>/../share/minigolf/data` or `<exe>/data` if it holds `fields/` (an
+/// installed or copied build), else the source tree's `data/` recorded at build time.
 std::filesystem::path data_dir();
 
 /// `s` as one single-quoted POSIX shell word (for commands run through std::system).

@@ -2,12 +2,15 @@
 
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "core/check.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/json_io.hpp"
 #include "stats/gmm_io.hpp"
 
 namespace mg::ds {
@@ -103,19 +106,63 @@ HittingModel fit_hitting_model(const std::vector<Demonstration>& demos, const Hi
     throw InputError(fmt::format("demonstrations: expected at least {} moving samples for {} Gaussians, got {}",
                                  std::max(2 * k, 4), k, n_seds));
 
-  SedsResult seds = fit_seds(data, options.seds);
-  const int kv = options.strength_gaussians > 0 ? options.strength_gaussians : k;
-  if (kv > n_all) throw InputError(fmt::format("strength Gaussians: expected <= {} (samples), got {}", n_all, kv));
-  Rng rng(derive_seed(options.seds.seed, 1));
-  stats::EmOptions em;
-  em.reg_covar = options.seds.covariance_floor;
-  stats::EmResult strength_fit = stats::fit_gmm(strength, kv, rng, em);
-
-  HittingModel model(seds_to_gmm(seds.components), std::move(strength_fit.gmm), summary.x_star, summary.psi0,
-                     options.settings, options.seds.margin);
+  // A fit on valid demonstrations must not fail: if K components cannot be fitted (the joint
+  // covariance of a component is not positive definite in floating point, the constraints do
+  // not hold, ...), fit K - 1 and say so.
+  const int kv_requested = options.strength_gaussians > 0 ? options.strength_gaussians : k;
+  if (kv_requested > n_all)
+    throw InputError(fmt::format("strength Gaussians: expected <= {} (samples), got {}", n_all, kv_requested));
+  std::vector<std::string> notes;
+  std::optional<HittingModel> fitted;
+  SedsResult seds;
+  int kv = kv_requested;
+  // Per K: the plain fit; if its model cannot be built, the same fit without the components it
+  // left empty; then a refit with A_k bounded (SedsOptions::max_rate). A fit that works is
+  // never altered.
+  constexpr double kBoundedRate = 500.0;  // [1/s], a 2 ms time constant
+  constexpr double kMinPrior = 1e-6;
+  for (int kk = k; kk >= 1 && !fitted; --kk) {
+    kv = options.strength_gaussians > 0 ? kv_requested : kk;
+    Rng rng(derive_seed(options.seds.seed, 1));
+    stats::EmOptions em;
+    em.reg_covar = options.seds.covariance_floor;
+    const stats::Gmm strength_gmm = stats::fit_gmm(strength, kv, rng, em).gmm;
+    std::string why;
+    std::exception_ptr first_error;
+    bool plain_fit = false;  // attempt 0 got as far as a SEDS result
+    for (int attempt = 0; attempt < 3 && !fitted; ++attempt) {
+      SedsOptions so = options.seds;
+      so.gaussians = kk;
+      if (attempt == 2) so.max_rate = kBoundedRate;
+      if (attempt == 1 && !plain_fit) continue;
+      try {
+        if (attempt != 1) seds = fit_seds(data, so);
+        if (attempt == 0) plain_fit = true;
+        if (attempt >= 1) drop_empty_components(seds, kMinPrior);
+        if (attempt == 1 && seds.notes.empty()) continue;  // nothing to drop: go to the bounded refit
+        fitted.emplace(seds_to_gmm(seds.components), strength_gmm, summary.x_star, summary.psi0, options.settings,
+                       options.seds.margin);
+        if (attempt == 2)
+          notes.push_back(fmt::format("K = {}: refitted with |A_ij| <= {:g} 1/s ({})", kk, kBoundedRate, why));
+      } catch (const Error& e) {
+        if (why.empty()) {
+          why = e.what();
+          first_error = std::current_exception();
+        }
+        seds.notes.clear();
+      }
+    }
+    if (!fitted) {
+      if (kk == 1) std::rethrow_exception(first_error);
+      notes.push_back(fmt::format("K = {} failed ({}); fitting K = {}", kk, why, kk - 1));
+    }
+  }
+  for (const auto& n : seds.notes) notes.push_back(n);
+  HittingModel model = std::move(*fitted);
   model.provenance = {
       {"objective", to_string(options.seds.objective)},
-      {"gaussians", k},
+      {"gaussians", static_cast<int>(seds.components.size())},
+      {"gaussians_requested", k},
       {"strength_gaussians", kv},
       {"seed", options.seds.seed},
       {"demonstrations", demos.size()},
@@ -127,9 +174,11 @@ HittingModel fit_hitting_model(const std::vector<Demonstration>& demos, const Hi
       {"optimizer", "NLopt LD_SLSQP, analytic gradients"},
       {"optimizer_status", seds.optimizer_status},
   };
+  if (!notes.empty()) model.provenance["fit_notes"] = notes;
   if (report) {
     report->seds = std::move(seds);
     report->samples_used = static_cast<int>(n_seds);
+    report->notes = notes;
     report->summary = summary;
     report->fit_seconds = seconds_since(t0);
   }
@@ -205,14 +254,7 @@ void write_hitting_model(const std::filesystem::path& path, const HittingModel& 
 }
 
 HittingModel read_hitting_model(const std::filesystem::path& path) {
-  const std::string text = read_text_file(path);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(fmt::format("{}: expected a JSON hitting model, got a parse error: {}", path.string(), e.what()));
-  }
-  return hitting_model_from_json(j, path.string());
+  return hitting_model_from_json(read_json_file(path), path.string());
 }
 
 }  // namespace mg::ds

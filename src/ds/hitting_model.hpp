@@ -88,6 +88,8 @@ struct HittingFitReport {
   SedsResult seds;
   int samples_used = 0;       ///< samples in the SEDS fit
   double fit_seconds = 0.0;   ///< wall time of the whole fit
+  /// What the fit did on its own to succeed (fewer Gaussians, components dropped), one line each.
+  std::vector<std::string> notes;
   DemoSummary summary;
 };
 

@@ -100,14 +100,16 @@ std::string to_string(SedsObjective objective) {
 }
 
 void SedsOptions::validate() const {
-  if (gaussians < 1 || gaussians > 50)
-    throw InputError(fmt::format("gaussians: expected 1..50, got {}", gaussians));
+  if (gaussians < 1 || gaussians > kMaxSedsGaussians)
+    throw InputError(fmt::format("gaussians: expected 1..{} (the fit's cost grows as K^2), got {}", kMaxSedsGaussians,
+                                 gaussians));
   if (max_evaluations < 1)
     throw InputError(fmt::format("max_evaluations: expected >= 1, got {}", max_evaluations));
   require_positive("relative_tolerance", relative_tolerance);
   require_positive("margin", margin);
   require_in_range("optimizer_margin", optimizer_margin, margin, 1e6);
   require_positive("covariance_floor", covariance_floor);
+  if (max_rate != 0.0) require_in_range("max_rate", max_rate, 1.0, 1e6);
 }
 
 double stability_eigenvalue(const Mat3& a) {
@@ -371,6 +373,16 @@ std::vector<SedsComponent> seds_initial_guess(const SedsData& data, const SedsOp
     Eigen::SelfAdjointEigenSolver<Mat3> eig(sym);
     const Vec3 ev = eig.eigenvalues().cwiseMin(-delta);
     c.a = eig.eigenvectors() * ev.asDiagonal() * eig.eigenvectors().transpose() + skew;
+    // Inside the optimiser's box (|A_ij| <= max_rate): a positive scale keeps A + A^T negative
+    // definite; re-projecting adds at most 2 delta to the diagonal.
+    const double biggest = c.a.cwiseAbs().maxCoeff();
+    if (options.max_rate > 0.0 && biggest > 0.5 * options.max_rate) {
+      c.a *= 0.5 * options.max_rate / biggest;
+      const Mat3 s2 = 0.5 * (c.a + c.a.transpose());
+      Eigen::SelfAdjointEigenSolver<Mat3> e2(s2);
+      c.a = e2.eigenvectors() * e2.eigenvalues().cwiseMin(-delta).asDiagonal() * e2.eigenvectors().transpose() +
+            0.5 * (c.a - c.a.transpose());
+    }
     c.prior = std::max(c.prior, 1e-6);
     // Velocity covariance consistent with the projected A (responsibility-weighted residuals).
     c.c = 0.5 * (c.c + c.c.transpose()).eval();
@@ -450,6 +462,31 @@ std::string nlopt_status_name(nlopt::result r) {
 
 }  // namespace
 
+void drop_empty_components(SedsResult& result, double min_prior) {
+  if (result.components.size() > 1) {
+    std::vector<SedsComponent> kept;
+    for (std::size_t k = 0; k < result.components.size(); ++k) {
+      if (result.components[k].prior >= min_prior) {
+        kept.push_back(result.components[k]);
+      } else {
+        result.notes.push_back(fmt::format("dropped SEDS component {} of {} (prior {:.2g} < {:g}: no data left in it)", k,
+                                           result.components.size(), result.components[k].prior, min_prior));
+      }
+    }
+    if (kept.empty()) {
+      kept.push_back(*std::max_element(result.components.begin(), result.components.end(),
+                                       [](const auto& a, const auto& b) { return a.prior < b.prior; }));
+      result.notes.clear();
+    }
+    if (kept.size() < result.components.size()) {
+      double total = 0.0;
+      for (const auto& c : kept) total += c.prior;
+      for (auto& c : kept) c.prior /= total;
+      result.components = std::move(kept);
+    }
+  }
+}
+
 SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
   options.validate();
   if (!data.y.allFinite() || !data.ydot.allFinite()) throw InputError("SEDS data: expected finite samples");
@@ -467,6 +504,16 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
   nlopt::opt opt(nlopt::LD_SLSQP, static_cast<unsigned>(p0.size()));
   opt.set_min_objective(nlopt_objective, &ctx);
   opt.add_inequality_mconstraint(nlopt_constraints, &ctx, std::vector<double>(static_cast<std::size_t>(options.gaussians), 1e-9));
+  if (options.max_rate > 0.0) {
+    std::vector<double> lower(p0.size(), -HUGE_VAL), upper(p0.size(), HUGE_VAL);
+    for (int k = 0; k < options.gaussians; ++k)
+      for (int j = 0; j < 9; ++j) {
+        lower[static_cast<std::size_t>(k * b + 10 + j)] = -options.max_rate;
+        upper[static_cast<std::size_t>(k * b + 10 + j)] = options.max_rate;
+      }
+    opt.set_lower_bounds(lower);
+    opt.set_upper_bounds(upper);
+  }
   opt.set_ftol_rel(options.relative_tolerance);
   opt.set_maxeval(options.max_evaluations);
   std::vector<double> x(p0.data(), p0.data() + p0.size());

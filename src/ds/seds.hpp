@@ -51,6 +51,10 @@ struct SedsData {
   Eigen::Index size() const { return y.cols(); }
 };
 
+/// Upper bound on K: the fit costs about evaluations x N x K^2 (K = 12: ~1 min on 300 samples);
+/// beyond it a fit does not finish in reasonable time and never improves a hitting motion.
+inline constexpr int kMaxSedsGaussians = 12;
+
 struct SedsOptions {
   int gaussians = 4;                                     ///< K >= 1
   SedsObjective objective = SedsObjective::kLikelihood;
@@ -60,6 +64,12 @@ struct SedsOptions {
   double margin = 1e-4;                                  ///< required: lambda_max(A+A^T) <= -margin [1/s]
   double optimizer_margin = 1e-2;                        ///< margin used inside the optimiser (stricter) [1/s]
   double covariance_floor = 1e-6;                        ///< added to every covariance diagonal (units^2)
+  /// Bound on every entry of A_k [1/s] (box constraint in the optimiser; 0 = none). Without it
+  /// the optimiser can drive A_k of little-used components (and of clean, noise-free data) to
+  /// 1e2..1e6, and the joint covariance C_k + A_k Sigma_k A_k^T loses positive definiteness to
+  /// round-off. The hitting-model fit retries with 500 1/s (a 2 ms time constant) when that
+  /// happens (see fit_hitting_model).
+  double max_rate = 0.0;
   void validate() const;
 };
 
@@ -70,6 +80,7 @@ struct SedsResult {
   int evaluations = 0;             ///< objective evaluations used
   std::string optimizer_status;    ///< NLopt's result, or why the best feasible point was taken
   double max_eigenvalue = 0.0;     ///< max over k of lambda_max(A_k + A_k^T) [1/s]
+  std::vector<std::string> notes;  ///< what the fit did on its own (components dropped), for the user
 };
 
 /// Largest eigenvalue of `A + A^T` (< 0 means the stability condition holds for this component).
@@ -97,6 +108,11 @@ Eigen::Vector3d seds_velocity(const std::vector<SedsComponent>& components, cons
 /// Initial feasible guess: k-means + EM over (y, ydot) (mg::stats::fit_gmm), then each A_k is
 /// projected onto the constraint set (symmetric part's eigenvalues clamped to <= -delta).
 std::vector<SedsComponent> seds_initial_guess(const SedsData& data, const SedsOptions& options);
+
+/// Drops the components whose prior is below `min_prior` (they carry no data; their parameters
+/// are whatever the optimiser left there) and renormalises; keeps at least the largest one.
+/// Appends one line per dropped component to `result.notes`.
+void drop_empty_components(SedsResult& result, double min_prior);
 
 /// Full fit: initial guess, NLopt SLSQP with analytic gradients, then a hard re-check of the
 /// constraints (NumericalError if any `lambda_max(A_k + A_k^T) > -margin`).

@@ -81,6 +81,11 @@ Dataset load_dataset(const std::filesystem::path& path, const std::vector<std::s
 Eigen::MatrixXd query_inputs(const CsvTable& table, const std::vector<std::string>& input_names) {
   Eigen::MatrixXd m = pick_columns(table, input_names);
   if (m.rows() < 1) throw InputError(fmt::format("{}: expected at least 1 query row, got 0", table.source));
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j)
+      if (std::abs(m(i, j)) > kMaxDatasetValue)
+        throw InputError(fmt::format("{}: row {}, column '{}': {:g} is beyond +-{:g}", table.source, i + 1,
+                                     input_names[static_cast<std::size_t>(j)], m(i, j), kMaxDatasetValue));
   return m;
 }
 

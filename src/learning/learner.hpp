@@ -39,7 +39,12 @@ struct TrainOptions {
   int cv_folds = 5;          ///< folds for cross-validation (>= 2; capped at N)
   int restarts = 10;         ///< GPR optimiser starts and k-means++ seedings (>= 1)
   std::uint64_t seed = 1;    ///< everything random derives from it
-  stats::EmOptions em{300, 1e-8, 1e-2, 5};  ///< reg_covar in standardised units (1e-2: measured best for 10-50 points)
+  stats::EmOptions em{300, 1e-8, 1e-2, 5};  ///< reg_covar in standardised units (used as is when !choose_reg_covar)
+  /// Choose reg_covar from `reg_covar_grid` by cross-validated GMR error (cv_folds folds, the
+  /// same folds for every value) instead of using em.reg_covar: no single value suits both noisy
+  /// data (1e-2 is best at 10-50 noisy points) and clean data (1e-2 over-smooths it 4x).
+  bool choose_reg_covar = true;
+  std::vector<double> reg_covar_grid{1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1};
   /// GPR initial guesses and bounds (data units): empty = defaults; one entry = all outputs;
   /// else one per output. Their `restarts` is overridden by `restarts` above.
   std::vector<stats::GprOptions> gpr;
@@ -55,6 +60,7 @@ struct FitReport {
   double log_marginal_likelihood = 0.0;
   // GMM-based
   int n_gaussians = 0;
+  double reg_covar = 0.0;       ///< the covariance regularisation used (standardised units)
   double log_likelihood = 0.0;  ///< of the training data under the GMM (data units) [nats]
   double bic = 0.0;
 };
@@ -96,6 +102,11 @@ struct Predictions {
   Eigen::MatrixXd mean;
   Eigen::MatrixXd std;
 };
+
+/// GPR training rows at most: the fit costs O(N^3) per optimiser step and start (about a minute
+/// at 1000 rows with 10 starts on one core), so larger sets are refused with that message
+/// rather than left to run for minutes; GMR has no such bound (linear in N).
+inline constexpr int kMaxGprRows = 1000;
 
 Model train(const Dataset& data, const TrainOptions& options);
 

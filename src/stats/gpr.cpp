@@ -83,6 +83,15 @@ void require_training_data(const Eigen::MatrixXd& inputs, const Eigen::VectorXd&
                                  targets.size()));
   if (!inputs.allFinite() || !targets.allFinite())
     throw InputError("GPR: training data: expected finite values, got NaN or inf");
+  // Squared differences and variances of values beyond 1e100 overflow: predictions would be NaN.
+  constexpr double kMaxValue = 1e100;
+  for (Eigen::Index i = 0; i < inputs.rows(); ++i) {
+    for (Eigen::Index j = 0; j < inputs.cols(); ++j)
+      if (std::abs(inputs(i, j)) > kMaxValue)
+        throw InputError(fmt::format("GPR: training input row {}, column {}: {:g} is beyond +-{:g}", i, j, inputs(i, j), kMaxValue));
+    if (std::abs(targets(i)) > kMaxValue)
+      throw InputError(fmt::format("GPR: training target {}: {:g} is beyond +-{:g}", i, targets(i), kMaxValue));
+  }
 }
 
 struct OptContext {
@@ -155,10 +164,10 @@ GpModel make_gp_model(const Eigen::MatrixXd& inputs, const Eigen::VectorXd& targ
   for (Eigen::Index i = 0; i < d; ++i)
     if (!(hyper.length_scales(i) > 0.0) || !std::isfinite(hyper.length_scales(i)))
       throw InputError(fmt::format("GPR: length scale {}: expected a positive number, got {}", i, hyper.length_scales(i)));
-  if (!(hyper.signal_std > 0.0) || !std::isfinite(hyper.signal_std))
-    throw InputError(fmt::format("GPR: signal std: expected a positive number, got {}", hyper.signal_std));
-  if (!(hyper.noise_std >= 0.0) || !std::isfinite(hyper.noise_std))
-    throw InputError(fmt::format("GPR: noise std: expected a number >= 0, got {}", hyper.noise_std));
+  if (!(hyper.signal_std > 0.0) || !(hyper.signal_std <= 1e100))
+    throw InputError(fmt::format("GPR: signal std: expected a positive number <= 1e100, got {}", hyper.signal_std));
+  if (!(hyper.noise_std >= 0.0) || !(hyper.noise_std <= 1e100))
+    throw InputError(fmt::format("GPR: noise std: expected a number in [0, 1e100], got {}", hyper.noise_std));
 
   GpModel m;
   m.inputs = inputs;

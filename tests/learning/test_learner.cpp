@@ -84,6 +84,31 @@ TEST(LearningModel, FarFromTheDataGprRevertsToTheMeanAndGmrContinuesTheTrend) {
   }
 }
 
+// Issue 13: a GPR fit's cost grows as N^3 (1,500 rows ran over 150 s): larger sets are refused
+// at once with a message that says why and what to use instead.
+TEST(LearningModel, GprRefusesMoreRowsThanItsBoundAtOnce) {
+  const Dataset big = linear_map(kMaxGprRows + 1, 9, 0.01);
+  try {
+    train(big, options(Method::kGpr));
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(std::to_string(kMaxGprRows)), std::string::npos) << what;
+    EXPECT_NE(what.find("gmr"), std::string::npos) << what;
+  }
+  // GMR takes the same rows.
+  EXPECT_NO_THROW(train(big, options(Method::kGmr, 2)));
+}
+
+// reg_covar 0 would let a component collapse; the fit refuses it instead of writing a model that
+// load_model then rejects.
+TEST(LearningModel, ZeroRegCovarIsAnInputError) {
+  TrainOptions o = options(Method::kGmr, 2);
+  o.choose_reg_covar = false;
+  o.em.reg_covar = 0.0;
+  EXPECT_THROW(train(linear_map(20, 3, 0.01), o), InputError);
+}
+
 TEST(LearningModel, ConstantInputColumnAndOneDimensionalData) {
   Dataset d = flat_field(20, 11);
   Dataset with_const = d;

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/), and the
+# real-time session (three threads at 500 Hz) under ThreadSanitizer (build-tsan/). Too slow for
+# every CI run on 2 cores; docs/robustness.md has the measured times. Any report fails the run.
+#
+# usage: scripts/sanitize.sh [asan|tsan|all]  (default all)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+what="${1:-all}"
+jobs="${JOBS:-2}"
+
+if [[ $what == asan || $what == all ]]; then
+  start=$(date +%s)
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINIGOLF_BUILD_BENCHMARKS=OFF \
+    -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
+    -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
+  nice -n 10 cmake --build build-asan -j"$jobs"
+  built=$(date +%s)
+  # MuJoCo's and Python's own allocations are not ours: leaks are checked in our tests only
+  # through the suppressions file.
+  (cd build-asan && ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1" \
+     LSAN_OPTIONS="suppressions=$PWD/../scripts/sanitize.supp:print_suppressions=0" \
+     UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
+     nice -n 10 ctest -j"$jobs" --output-on-failure --timeout 3000 -E '^python_')
+  echo "sanitize.sh: ASan + UBSan: build $((built - start)) s, tests $(( $(date +%s) - built )) s"
+fi
+
+if [[ $what == tsan || $what == all ]]; then
+  start=$(date +%s)
+  cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINIGOLF_BUILD_BENCHMARKS=OFF \
+    -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
+  nice -n 10 cmake --build build-tsan -j"$jobs" --target test_system minigolf
+  built=$(date +%s)
+  (cd build-tsan && TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \
+     nice -n 10 ctest -j1 --output-on-failure --timeout 3000 -R 'Session|Realtime|RealTime')
+  echo "sanitize.sh: TSan (real-time session): build $((built - start)) s, tests $(( $(date +%s) - built )) s"
+fi
