@@ -34,6 +34,11 @@ struct Rig {
     control::module_reset(model, md, d.get());
     control::request_rest(model, md, 0.1);
   }
+  /// The core tick on the simulated arm: read -> update -> write.
+  void core_tick() {
+    control::MujocoArm arm(model.arm(), d.get());
+    control::control_tick(model, md, arm);
+  }
   /// Between ticks: the user update of the cycle (hit once at rest) and the robot update.
   void between_ticks() {
     if (md.state == control::ModuleState::kRest && md.at_rest_pose)
@@ -51,7 +56,7 @@ void BM_CoreUpdate(benchmark::State& state) {
     state.PauseTiming();
     rig.between_ticks();
     state.ResumeTiming();
-    control::core_update(rig.model, rig.md, rig.d.get());
+    rig.core_tick();
     state.PauseTiming();
     rig.world.step(rig.d.get());
     rig.world.step(rig.d.get());
@@ -65,7 +70,7 @@ void BM_RobotUpdateHitting(benchmark::State& state) {
   rig.restart();
   while (rig.md.state != control::ModuleState::kHitting) {
     rig.between_ticks();
-    control::core_update(rig.model, rig.md, rig.d.get());
+    rig.core_tick();
     rig.world.step(rig.d.get());
     rig.world.step(rig.d.get());
   }
@@ -85,7 +90,7 @@ void BM_LockstepSecond(benchmark::State& state) {
   for (auto _ : state) {
     for (int k = 0; k < 500; ++k) {
       rig.between_ticks();
-      control::core_update(rig.model, rig.md, rig.d.get());
+      rig.core_tick();
       rig.world.step(rig.d.get());
       rig.world.step(rig.d.get());
     }

@@ -17,6 +17,7 @@
 #include "control/module_config.hpp"
 #include "system/session.hpp"
 #include "core/error.hpp"
+#include "core/io.hpp"
 
 namespace mg::cli {
 
@@ -61,9 +62,14 @@ void add_console_command(CLI::App& app) {
     options.vision_sim = o->vision_sim;
     options.echo = o->echo;
     options.seed = o->seed;
-    system::Session session(config, options, std::cout);
-    const bool interactive = o->script.empty() && isatty(STDIN_FILENO) != 0;
-    session.run(o->script.empty() ? std::cin : script, interactive);
+    // Ctrl-C (or kill, or a closed terminal) ends the session as `quit` does: the recording is kept.
+    defer_termination_signals();
+    {
+      system::Session session(config, options, std::cout);
+      const bool interactive = o->script.empty() && isatty(STDIN_FILENO) != 0;
+      session.run(o->script.empty() ? std::cin : script, interactive);
+    }
+    if (const int sig = termination_signal()) terminate_by_signal(sig);
   });
 }
 

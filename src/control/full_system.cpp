@@ -64,8 +64,9 @@ void LockstepRunner::module_tick_if_due() {
   if (steps_ % steps_per_tick_ == 0) {
     if (data_.tick % model_->config().robot_update_divider == 0)
       robot_update(*model_, data_, perception_->perceive(d_->time));
+    MujocoArm arm(model_->arm(), d_);
     const auto t0 = std::chrono::steady_clock::now();
-    core_update(*model_, data_, d_);
+    control_tick(*model_, data_, arm);
     const auto t1 = std::chrono::steady_clock::now();
     durations_us_.push_back(
         static_cast<float>(std::chrono::duration<double, std::micro>(t1 - t0).count()));
@@ -424,9 +425,12 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   r.min_position_margin = 1e9;
   LockstepRunner run(world, model, d);
   TorqueNoise torque_noise(model, world.model(), options);
+  double t_module_hit = -1.0;  // [s] state the module measured when it saw the hit (-1: not yet)
   const auto step = [&] {
     torque_noise.before_step(run.steps(), d);
+    const double t_state = d->time;
     run.step();
+    if (t_module_hit < 0.0 && run.module().ball_hit) t_module_hit = t_state;
   };
   const double dt = world.model()->opt.timestep;
   const int ball_dof = world.ids().ball_dof;
@@ -572,6 +576,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   }
   r.hit = true;
   r.hit_time = d->time - t_request;
+  const double t_first_contact = d->time;
   r.club = {std::atan2(club_velocity.y(), club_velocity.x()), club_velocity.norm()};
 
   // The ball rolls; the module brakes and idles meanwhile.
@@ -662,6 +667,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     world.set_ball_state(d, ball_world->ball_state(ball_data));
     mj_forward(world.model(), d);
   }
+  if (t_module_hit >= 0.0) r.hit_detection_lag = t_module_hit - t_first_contact;
   r.outcome = tracker.outcome();
   r.outcome.trajectory = std::move(trajectory);
   // The ball's time starts at the first contact (ball-only putts start at the launch).

@@ -5,10 +5,12 @@
 /// give the same bits (wall-clock timing is measured but never fed back).
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
 #include "control/minigolf_module.hpp"
+#include "control/mujoco_arm.hpp"
 #include "sim/putt.hpp"
 #include "sim/world.hpp"
 
@@ -164,6 +166,11 @@ struct FullPuttResult {
   /// then simulated on from that hand-off, exactly as without one (at most 3).
   int handoff_fallbacks = 0;
   long arm_steps = 0;  ///< physics steps simulated with the arm (rest, hit and roll until hand-off)
+  /// Cross-check of the module's hit detection (from measurements: the club's FK path, the
+  /// perceived ball) against the simulator's contact: [s] the time of the state in which the
+  /// module saw the hit minus the end of the physics step whose contact list first held the
+  /// club-ball contact. NaN if either never happened.
+  double hit_detection_lag = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Caller-owned scratch of full_system_putt, one per thread (not itself thread-safe): the ball

@@ -28,18 +28,13 @@ Vector7 fir_step(FirFilter& f, const Vector7& input) {
   return f.sum / static_cast<double>(f.taps);
 }
 
-ModuleModel::ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::HittingModel hitting,
-                         const ModuleConfig& config, int ball_geom, int ball_dof)
-    : config_(config), arm_(m, mount), hitting_(std::move(hitting)) {
+ModuleModel::ModuleModel(robot::ArmModel arm, ds::HittingModel hitting, const ModuleConfig& config,
+                         double ball_radius)
+    : config_(config), arm_(std::move(arm)), hitting_(std::move(hitting)) {
   config_.validate();
-  club_geom_ = mj_name2id(m, mjOBJ_GEOM, "club_head");
-  if (club_geom_ < 0) throw InputError("module: the model has no geom 'club_head'");
-  if (ball_geom < 0 || ball_geom >= m->ngeom)
-    throw InputError(fmt::format("module: ball geom: expected 0..{}, got {}", m->ngeom - 1, ball_geom));
-  if (ball_dof < 0 || ball_dof + 6 > m->nv)
-    throw InputError(fmt::format("module: ball dof: expected 0..{}, got {}", m->nv - 6, ball_dof));
-  ball_geom_ = ball_geom;
-  ball_dof_ = ball_dof;
+  if (!(ball_radius > 0.0 && ball_radius < 1.0))
+    throw InputError(fmt::format("module: ball radius: expected 0..1 m, got {}", ball_radius));
+  ball_radius_ = ball_radius;
   ik_.dt = config_.core_period();
   speed_cap_ = config_.speed_max;
   dynamic_cap_ = std::min(config_.speed_max, config_.arm_speed_cap);
@@ -54,6 +49,30 @@ ModuleModel::ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::Hit
   }
   ik_.validate();
   for (int j = 0; j < 7; ++j) posture_[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
+}
+
+namespace {
+
+double sphere_radius(const mjModel* m, int geom) {
+  if (m == nullptr) throw InputError("module: expected an mjModel, got a null pointer");
+  if (geom < 0 || geom >= m->ngeom)
+    throw InputError(fmt::format("module: ball geom: expected 0..{}, got {}", m->ngeom - 1, geom));
+  if (m->geom_type[geom] != mjGEOM_SPHERE)
+    throw InputError(fmt::format("module: ball geom {}: expected a sphere", geom));
+  return m->geom_size[3 * geom];
+}
+
+}  // namespace
+
+ModuleModel::ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::HittingModel hitting,
+                         const ModuleConfig& config, int ball_geom, int ball_dof)
+    : ModuleModel(robot::ArmModel(m, mount), std::move(hitting), config, sphere_radius(m, ball_geom)) {
+  club_geom_ = mj_name2id(m, mjOBJ_GEOM, "club_head");
+  if (club_geom_ < 0) throw InputError("module: the model has no geom 'club_head'");
+  if (ball_dof < 0 || ball_dof + 6 > m->nv)
+    throw InputError(fmt::format("module: ball dof: expected 0..{}, got {}", m->nv - 6, ball_dof));
+  ball_geom_ = ball_geom;
+  ball_dof_ = ball_dof;
 }
 
 double ModuleModel::club_speed_cap(double angle) const {
@@ -88,16 +107,6 @@ Eigen::Vector3d approach(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
   return n <= step ? to : Eigen::Vector3d(from + d * (step / n));
 }
 
-bool club_touches_ball(const ModuleModel& model, const mjData* d) {
-  for (int i = 0; i < d->ncon; ++i) {
-    const mjContact& c = d->contact[i];
-    if ((c.geom1 == model.club_geom() && c.geom2 == model.ball_geom()) ||
-        (c.geom2 == model.club_geom() && c.geom1 == model.ball_geom()))
-      return true;
-  }
-  return false;
-}
-
 /// Enters a state: resets what the new state integrates from.
 void enter_state(const ModuleModel& model, ModuleData& data, ModuleState next) {
   const auto& c = model.config();
@@ -115,7 +124,9 @@ void enter_state(const ModuleModel& model, ModuleData& data, ModuleState next) {
       const Eigen::Vector3d psi = direction_of(data.angle);
       data.p_ref = face.translation() + c.club_face_offset * psi;
       data.ball_hit = false;
-      data.contact_seen = false;
+      data.hit_evidence = HitEvidence::kNone;
+      data.ball_at_hit_start = data.seen.ball;
+      data.hit_start_tick = data.tick;
       data.v_ds.setZero();
       data.v_ref.setZero();
       break;
@@ -131,12 +142,16 @@ void enter_state(const ModuleModel& model, ModuleData& data, ModuleState next) {
 }  // namespace
 
 void module_reset(const ModuleModel& model, ModuleData& data, const mjData* d) {
+  module_reset(model, data, robot::joint_positions(model.arm(), d));
+}
+
+void module_reset(const ModuleModel& model, ModuleData& data, const Vector7& q) {
   data.state = ModuleState::kIdle;
   data.pending = Command::kNone;
   data.request_valid = false;
   data.tick = 0;
   data.time_in_state = 0.0;
-  data.q_ref = robot::joint_positions(model.arm(), d);
+  data.q_ref = q;
   data.qd_des.setZero();
   data.qdd_des.setZero();
   data.integral.setZero();
@@ -145,7 +160,9 @@ void module_reset(const ModuleModel& model, ModuleData& data, const mjData* d) {
   fir_reset(data.fir, model.config().fir_length, Vector7::Zero());
   data.at_rest_pose = false;
   data.ball_hit = false;
-  data.contact_seen = false;
+  data.hit_evidence = HitEvidence::kNone;
+  data.ball_at_hit_start = {0, 0, 0};
+  data.hit_start_tick = 0;
   data.compute_fault = false;
   data.overrun_fault = false;
   data.v_ds.setZero();
@@ -196,11 +213,36 @@ bool request_hit(const ModuleModel& model, ModuleData& data, double angle, doubl
 
 void request_idle(ModuleData& data) { data.pending = Command::kIdle; }
 
-void robot_update(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen) {
+namespace {
+
+/// Takes a perception sample: the module acts on the latest one.
+void take_perception(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen) {
   data.seen = seen;
   // Age counts from the observation, not from this update.
   if (seen.fresh)
     data.seen_tick = data.tick - std::llround(std::max(0.0, seen.age) / model.config().core_period());
+}
+
+}  // namespace
+
+bool club_reaches_ball(const ModuleModel& model, const Eigen::Isometry3d& face,
+                       const std::array<double, 3>& ball) noexcept {
+  // The ball centre in the face frame; the head is the box behind the face: x in [-thickness, 0],
+  // |y| <= length / 2, |z| <= height / 2. Touching: the centre within one radius of the box.
+  // In front of the face only the face counts; behind it (x < 0) the head has gone through
+  // the ball's place, which counts as reached too (the club's path past the ball).
+  const robot::ClubGeometry& club = model.arm().mount().club;
+  const Eigen::Vector3d r = face.inverse() * Eigen::Vector3d(ball[0], ball[1], ball[2]);
+  if (!r.allFinite()) return false;
+  const double dx = std::max(0.0, r.x());
+  const double dy = std::max(0.0, std::abs(r.y()) - 0.5 * club.head_length);
+  const double dz = std::max(0.0, std::abs(r.z()) - 0.5 * club.head_height);
+  const double radius = model.ball_radius();
+  return dx * dx + dy * dy + dz * dz < radius * radius;
+}
+
+void robot_update(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen) noexcept {
+  take_perception(model, data, seen);
   if (data.state != ModuleState::kHitting) return;
   const auto& h = model.hitting();
   // Past the hitting plane the DS keeps commanding the hitting velocity (notes/ds.md).
@@ -227,14 +269,16 @@ bool ball_in_place(const ModuleModel& model, const ModuleData& data) {
          model.config().ball_tolerance;
 }
 
-void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
+ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
+                            const MeasuredState& measured) noexcept {
   const auto& c = model.config();
   const auto& arm = model.arm();
   const double dt = c.core_period();
   TickInfo info;
 
-  const Vector7 q = robot::joint_positions(arm, d);
-  const Vector7 qd = robot::joint_velocities(arm, d);
+  const Vector7& q = measured.q;
+  const Vector7& qd = measured.qd;
+  if (measured.perception) robot_update(model, data, *measured.perception);
 
   // ---- observation ----
   Observation obs;
@@ -263,10 +307,21 @@ void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
   obs.at_rest_pose = data.state == ModuleState::kRest && data.at_rest_pose &&
                      qd_max < c.stationary_threshold;
   if (data.state == ModuleState::kHitting) {
-    const double* bv = d->qvel + model.ball_dof();
-    const double ball_speed = std::sqrt(bv[0] * bv[0] + bv[1] * bv[1] + bv[2] * bv[2]);
-    if (club_touches_ball(model, d)) data.contact_seen = true;
-    if (data.contact_seen || ball_speed > c.ball_moving_speed) data.ball_hit = true;
+    // Hit detection from what a real system measures: the club head by FK of the measured
+    // joints against the perceived ball, and the perceived ball's motion since the hit began.
+    if (!data.ball_hit && finite(q) &&
+        club_reaches_ball(model, robot::dh_club_pose(arm, q), data.seen.ball)) {
+      data.ball_hit = true;
+      data.hit_evidence = HitEvidence::kClubPath;
+    }
+    if (!data.ball_hit && data.seen.fresh && data.seen_tick >= data.hit_start_tick) {
+      const auto& b = data.seen.ball;
+      const auto& b0 = data.ball_at_hit_start;
+      if (std::hypot(b[0] - b0[0], b[1] - b0[1]) > c.ball_moved_distance) {
+        data.ball_hit = true;
+        data.hit_evidence = HitEvidence::kBallMotion;
+      }
+    }
     obs.ball_hit = data.ball_hit;
     const Eigen::Vector3d psi = direction_of(data.angle);
     obs.passed_ball = (data.p_ref - model.hitting().x_star()).dot(psi) > c.passed_distance;
@@ -373,15 +428,26 @@ void core_update(const ModuleModel& model, ModuleData& data, mjData* d) {
     if (!std::isfinite(tau[j])) tau[j] = 0.0;
     if (std::abs(tau[j]) > lim) info.torque_clamped = true;
     tau[j] = std::clamp(tau[j], -lim, lim);
-    d->ctrl[arm.actuator_id(j)] = tau[j];
   }
   data.tau = tau;
   info.fault = fault;
+  info.hit = data.hit_evidence;
   data.last = info;
   // A fault found while computing (IK/RNEA) is reported in the next tick's observation.
   data.compute_fault = fault && !obs.fault;
   data.time_in_state += dt;
   ++data.tick;
+  ModuleCommand command;
+  command.tau = tau;
+  command.state = data.state;
+  command.status = info;
+  return command;
+}
+
+ModuleCommand control_tick(const ModuleModel& model, ModuleData& data, ArmBackend& backend) noexcept {
+  const ModuleCommand command = module_update(model, data, backend.read());
+  backend.write(command);
+  return command;
 }
 
 }  // namespace mg::control

@@ -5,14 +5,23 @@
 /// Model/Data split: `ModuleModel` is immutable after construction (config, arm, hitting model,
 /// MuJoCo ids); `ModuleData` is the mutable, preallocated per-run state. One Data per thread.
 ///
-/// Schedulers (full_system.hpp: lockstep; realtime_runner.hpp: three threads) call `robot_update`
-/// every `robot_update_divider`-th core tick with the perception of that moment, then
-/// `core_update`; the module code is the same for both.
+/// The core tick is read -> update -> write (control/arm_interface.hpp): `module_update` takes the
+/// measured joint state and returns joint torques and a status; an ArmBackend (the simulator,
+/// control/mujoco_arm.hpp; a fake in tests; a driver for the real WAM, docs/hardware.md) does
+/// the read and the write, `control_tick` does all three. Nothing here reads the simulator.
+/// Schedulers (full_system.hpp: lockstep; system/session.hpp: lockstep or three threads) call
+/// `robot_update` every `robot_update_divider`-th core tick with the perception of that moment,
+/// then the core tick; the module code is the same for all.
 ///
-/// Real-time contract: `core_update` and `robot_update` allocate nothing and never throw; a NaN, a limit breach or a
-/// failed DS/IK evaluation becomes a fault observation, and next_state brakes. `request_hit`,
-/// `request_rest`, `request_idle` are the user update: called between ticks, they may validate
-/// and fail (the hit request is refused, never thrown).
+/// Hit detection, from measurements only: the ball is hit once the club head (FK of the measured
+/// joints, the head's box) reaches the perceived ball, or once the perceived ball has moved more
+/// than ball_moved_distance since the hit began. (The simulator's contact list is a cross-check
+/// in tests: FullPuttResult::hit_detection_lag.)
+///
+/// Real-time contract: `module_update`, `control_tick` and `robot_update` allocate nothing and
+/// never throw; a NaN, a limit breach or a failed DS/IK evaluation becomes a fault observation,
+/// and next_state brakes. `request_hit`, `request_rest`, `request_idle` are the user update:
+/// called between ticks, they may validate and fail (the hit request is refused, never thrown).
 ///
 /// Control law (per core tick of period T = 2 ms):
 ///   Idle    tau = g(q) (gravity compensation; the reference follows the measurement)
@@ -29,6 +38,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include "control/arm_interface.hpp"
 #include "control/module_config.hpp"
 #include "control/module_state.hpp"
 #include "ds/hitting_ds.hpp"
@@ -55,8 +65,13 @@ robot::Vector7 fir_step(FirFilter& f, const robot::Vector7& input);
 /// Immutable part of the module.
 class ModuleModel {
  public:
-  /// `m` must contain the arm (wam_bodies_mjcf) and a geom `ball_geom` (the ball). Validates the
-  /// config; throws mg::InputError if a name is missing.
+  /// Without a simulator (a real arm, a fake): the arm, the hitting model, the config and the
+  /// ball's radius [m] (hit detection). Validates; throws mg::InputError.
+  ModuleModel(robot::ArmModel arm, ds::HittingModel hitting, const ModuleConfig& config,
+              double ball_radius);
+  /// In the simulator: `m` must contain the arm (wam_bodies_mjcf) and a sphere geom `ball_geom`
+  /// (the ball, its radius is the ball radius). Validates the config; throws mg::InputError if a
+  /// name is missing.
   ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::HittingModel hitting,
               const ModuleConfig& config, int ball_geom, int ball_dof);
 
@@ -64,6 +79,9 @@ class ModuleModel {
   const robot::ArmModel& arm() const { return arm_; }
   const ds::HittingModel& hitting() const { return hitting_; }
   const robot::IkOptions& ik() const { return ik_; }
+  double ball_radius() const { return ball_radius_; }  ///< [m]
+  /// Simulator bookkeeping (physics_step, the putt harness, tests' contact cross-check); -1
+  /// without a simulator. The module's update never reads them.
   int club_geom() const { return club_geom_; }
   int ball_geom() const { return ball_geom_; }
   int ball_dof() const { return ball_dof_; }
@@ -85,6 +103,7 @@ class ModuleModel {
   ds::HittingModel hitting_;
   robot::IkOptions ik_;
   robot::Vector7 posture_;
+  double ball_radius_ = 0.0;
   int club_geom_ = -1;
   int ball_geom_ = -1;
   int ball_dof_ = -1;
@@ -92,14 +111,6 @@ class ModuleModel {
   double dynamic_cap_ = 3.0;
   double rest_speed_ = 0.25;
   double rest_turn_rate_ = 0.8;
-};
-
-/// Statistics of one core tick (for tests and the recorder).
-struct TickInfo {
-  Reason reason = Reason::kNoChange;
-  robot::RtStatus ik_status = robot::RtStatus::kOk;
-  bool torque_clamped = false;
-  bool fault = false;
 };
 
 /// Mutable per-run state of the module. Construct with the model (allocates the DS scratch once).
@@ -132,7 +143,10 @@ class ModuleData {
   Eigen::Vector3d v_brake0 = Eigen::Vector3d::Zero();  ///< [m/s] face reference velocity at braking
   bool at_rest_pose = false;
   bool ball_hit = false;       ///< latched during a hit
-  bool contact_seen = false;   ///< club_head-ball contact seen this hit
+  HitEvidence hit_evidence = HitEvidence::kNone;  ///< what showed it
+  /// [m, world] the perceived ball when the hit began (ball motion is measured from there).
+  std::array<double, 3> ball_at_hit_start{0, 0, 0};
+  std::int64_t hit_start_tick = 0;  ///< core tick the hit began
   bool compute_fault = false;  ///< IK/RNEA failed last tick: reported as a fault this tick
   /// Set by a real-time scheduler after an overrun streak; a fault until the module is reset.
   bool overrun_fault = false;
@@ -141,7 +155,9 @@ class ModuleData {
   TickInfo last;
 };
 
-/// Resets the data to Idle with the reference at the measured joint positions of `d`.
+/// Resets the data to Idle with the reference at the measured joint positions `q` [rad].
+void module_reset(const ModuleModel& model, ModuleData& data, const robot::Vector7& q);
+/// The same with the arm's joint positions in a simulation.
 void module_reset(const ModuleModel& model, ModuleData& data, const mjData* d);
 
 /// User update (not real-time): ask for the rest pose for hitting angle `angle` [rad].
@@ -152,13 +168,26 @@ bool request_rest(const ModuleModel& model, ModuleData& data, double angle);
 bool request_hit(const ModuleModel& model, ModuleData& data, double angle, double speed);
 void request_idle(ModuleData& data);
 
-/// The 500 Hz core update: reads q, qd, contacts and the ball from `d`, runs the state machine
-/// and writes the arm's torques into d->ctrl. Real-time safe: no allocation, no throw.
-void core_update(const ModuleModel& model, ModuleData& data, mjData* d);
+/// The 500 Hz core update: from the measured joint state (and the latest perception: the robot
+/// update's, or `measured.perception`, which runs robot_update first) runs the state machine and
+/// computes the joint torques.
+/// Real-time safe: no allocation, no throw; any input (NaN, out of range) gives a finite,
+/// clamped command (a fault brakes).
+ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
+                            const MeasuredState& measured) noexcept;
+
+/// One core tick on an arm: backend.read() -> module_update -> backend.write(). Real-time safe
+/// when the backend is.
+ModuleCommand control_tick(const ModuleModel& model, ModuleData& data, ArmBackend& backend) noexcept;
 
 /// The robot update (every robot_update_divider-th core tick, called by the scheduler): takes the
 /// perceived ball and hole and, while hitting, evaluates the DS velocity at p_ref. Real-time safe.
-void robot_update(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen);
+void robot_update(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen) noexcept;
+
+/// True if the club head (its box, at face pose `face` [world]: x the face normal, y heel, z up)
+/// touches or has passed through a ball of the model's radius centred at `ball` [m, world].
+bool club_reaches_ball(const ModuleModel& model, const Eigen::Isometry3d& face,
+                       const std::array<double, 3>& ball) noexcept;
 
 /// True while the last fresh perception is at most perception_max_age old (in core ticks).
 bool perception_fresh(const ModuleModel& model, const ModuleData& data);

@@ -84,6 +84,7 @@ void ModuleConfig::validate() const {
   require_finite_positive(stationary_threshold, "stationary_threshold");
   require_finite_positive(ball_moving_speed, "ball_moving_speed");
   require_finite_positive(passed_distance, "passed_distance");
+  require_finite_positive(ball_moved_distance, "ball_moved_distance");
   require_finite_positive(max_hit_duration, "max_hit_duration");
   require_finite_positive(reference_leash, "reference_leash");
   require(std::isfinite(hit_ramp_time) && hit_ramp_time > 0.0 && hit_ramp_time <= 1.0,
@@ -141,7 +142,7 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
       "arm_speed_cap_negative", "negative_cap_angle",
       "rest_offset", "club_face_offset", "rest_speed", "rest_turn_rate", "rest_tolerance",
       "rest_heading_tolerance", "brake_lift_height", "brake_time", "stationary_threshold",
-      "ball_moving_speed", "passed_distance", "max_hit_duration", "hit_ramp_time", "reference_leash",
+      "ball_moving_speed", "passed_distance", "ball_moved_distance", "max_hit_duration", "hit_ramp_time", "reference_leash",
       "velocity_fault_factor", "params_model", "record", "perception_max_age", "ball_tolerance",
       "overrun_streak_limit", "vision_address", "vision_port", "vision_sim_rate", "vision_sim_noise",
       "vision_sim_latency", "vision_sim_dropout"};
@@ -185,6 +186,7 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
       else if (key == "stationary_threshold") num(c.stationary_threshold);
       else if (key == "ball_moving_speed") num(c.ball_moving_speed);
       else if (key == "passed_distance") num(c.passed_distance);
+      else if (key == "ball_moved_distance") num(c.ball_moved_distance);
       else if (key == "max_hit_duration") num(c.max_hit_duration);
       else if (key == "hit_ramp_time") num(c.hit_ramp_time);
       else if (key == "reference_leash") num(c.reference_leash);

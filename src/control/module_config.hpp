@@ -64,7 +64,12 @@ struct ModuleConfig {
   double brake_lift_height = 0.04;  ///< [m] club lifted this much while braking
   double brake_time = 0.15;         ///< [s] velocity target ramps to zero over this time
   double stationary_threshold = 0.05;  ///< [rad/s] every joint slower: stationary
-  double ball_moving_speed = 0.05;  ///< [m/s] ball faster than this: it was hit
+  /// [m/s] the putt harness (full_system_putt) counts the simulated ball faster than this as hit
+  /// (with the simulator's contact); the module itself detects the hit from measurements only.
+  double ball_moving_speed = 0.05;
+  /// [m] the module counts the ball as hit once the perceived ball has moved this far
+  /// (horizontally) from where it was seen when the hit began: 10x the vision noise.
+  double ball_moved_distance = 0.01;
   double passed_distance = 0.06;    ///< [m] DS point this far past x* without contact: passed
   /// [m] the integrated DS reference may lead the kinematic reference by at most this much.
   double reference_leash = 0.005;

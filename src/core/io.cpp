@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include <fmt/format.h>
+#include <pthread.h>
 #include <unistd.h>
 
 #include "core/error.hpp"
@@ -43,27 +44,60 @@ struct TempSlot {
 };
 TempSlot g_temp_slots[kTempSlots];
 
-extern "C" void remove_temp_files_and_die(int sig) {
+void remove_temp_files() noexcept {
   for (auto& slot : g_temp_slots)
     if (slot.used.load()) ::unlink(slot.path);
+}
+
+// Deferred termination (defer_termination_signals): the first signal is recorded in g_pending;
+// one delivered to another thread is forwarded to g_input_thread so its blocking read returns.
+std::atomic<bool> g_defer{false};
+std::atomic<int> g_pending{0};
+std::atomic<bool> g_forwarded{false};
+pthread_t g_input_thread{};
+
+/// Removes the temp files and raises `sig` with its default action. In the signal's handler the
+/// signal is blocked: it ends the process when the handler returns.
+void raise_default(int sig) noexcept {
+  remove_temp_files();
   std::signal(sig, SIG_DFL);
   std::raise(sig);
+}
+
+extern "C" void on_termination_signal(int sig) {
+  if (g_defer.load()) {
+    if (g_forwarded.exchange(false) && g_pending.load() == sig) return;  // our own forward
+    int none = 0;
+    if (g_pending.compare_exchange_strong(none, sig)) {
+      if (!pthread_equal(pthread_self(), g_input_thread)) {
+        g_forwarded.store(true);
+        pthread_kill(g_input_thread, sig);
+      }
+      return;
+    }
+  }
+  raise_default(sig);
+}
+
+/// Installs on_termination_signal for SIGINT / SIGTERM / SIGHUP; `always`: also over a handler
+/// somebody else installed (else only where the default action is in place). No SA_RESTART:
+/// a blocking read is interrupted.
+void install_termination_handlers(bool always) {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction old {};
+    ::sigaction(sig, nullptr, &old);
+    if (!always && old.sa_handler != SIG_DFL) continue;  // somebody else handles it
+    struct sigaction sa {};
+    sa.sa_handler = on_termination_signal;
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(sig, &sa, nullptr);
+  }
 }
 
 /// Registers `tmp` for removal on a signal; returns the slot (-1: none free or too long).
 int register_temp(const std::filesystem::path& tmp) {
   static std::once_flag handlers;
-  std::call_once(handlers, [] {
-    for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
-      struct sigaction old {};
-      ::sigaction(sig, nullptr, &old);
-      if (old.sa_handler != SIG_DFL) continue;  // somebody else handles it
-      struct sigaction sa {};
-      sa.sa_handler = remove_temp_files_and_die;
-      sigemptyset(&sa.sa_mask);
-      ::sigaction(sig, &sa, nullptr);
-    }
-  });
+  std::call_once(handlers, [] { install_termination_handlers(false); });
   const std::string& text = tmp.native();
   if (text.size() + 1 > kTempPathMax) return -1;
   for (int i = 0; i < kTempSlots; ++i) {
@@ -127,6 +161,23 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
     std::remove(tmp.c_str());
     throw IoError(fmt::format("{}: cannot replace file: {}", path.string(), ec.message()));
   }
+}
+
+void defer_termination_signals() {
+  g_input_thread = pthread_self();
+  g_defer.store(true);
+  install_termination_handlers(true);
+}
+
+int termination_signal() noexcept { return g_pending.load(); }
+
+void terminate_by_signal(int signal) {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, signal);
+  pthread_sigmask(SIG_UNBLOCK, &set, nullptr);
+  raise_default(signal);
+  std::_Exit(128 + signal);  // a signal whose default is to go on (not one of ours)
 }
 
 std::filesystem::path data_dir() {

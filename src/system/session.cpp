@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cmath>
 #include <istream>
 #include <ostream>
@@ -149,13 +150,16 @@ Session::Session(const ModuleConfig& config, const SessionOptions& options, std:
 
 Session::~Session() {
   stop_threads();
-  if (recorder_.active()) {
-    try {
-      const std::size_t n = recorder_.stop();
-      say(fmt::format("recording written: {} rows to {}", n, recorder_.path().string()));
-    } catch (const Error& e) {
-      say(fmt::format("error: {}", e.what()));
-    }
+  finish_recording();
+}
+
+void Session::finish_recording() {
+  if (!recorder_.active()) return;
+  try {
+    const std::size_t n = recorder_.stop();
+    say(fmt::format("recording written: {} rows to {}", n, recorder_.path().string()));
+  } catch (const Error& e) {
+    say(fmt::format("error: {}", e.what()));
   }
 }
 
@@ -182,8 +186,9 @@ void Session::tick_locked(bool lockstep) {
   mjData* d = d_.get();
   if (lockstep && md.tick % config_.robot_update_divider == 0) robot_tick_locked();
   const ModuleState before = md.state;
+  MujocoArm arm(model_->arm(), d);
   const auto t0 = Clock::now();
-  core_update(*model_, md, d);
+  control_tick(*model_, md, arm);
   timing_.add(std::chrono::duration<double, std::micro>(Clock::now() - t0).count());
   core_ticks_.fetch_add(1, std::memory_order_relaxed);
   const Reason reason = md.last.reason;
@@ -328,18 +333,19 @@ void Session::print_events() {
 
 void Session::run_for(double seconds) {
   if (options_.realtime) {
+    // In slices: an interrupt or a termination signal (Ctrl-C) ends the wait.
     const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                           std::chrono::duration<double>(seconds));
-    while (Clock::now() < until && !interrupted_.load())  // the robot thread prints meanwhile
+    while (Clock::now() < until && !interrupted_.load() && termination_signal() == 0)  // the robot thread prints meanwhile
       std::this_thread::sleep_for(std::min<Clock::duration>(until - Clock::now(),
-                                                            std::chrono::milliseconds(50)));
+                                                            std::chrono::milliseconds(20)));
     print_events();
     return;
   }
   const long ticks = std::lround(seconds / config_.core_period());
   const auto start = Clock::now();
   const auto period = std::chrono::duration<double>(config_.core_period());
-  for (long k = 0; k < ticks && !interrupted_.load(std::memory_order_relaxed); ++k) {
+  for (long k = 0; k < ticks && !interrupted_.load(std::memory_order_relaxed) && termination_signal() == 0; ++k) {
     {
       std::lock_guard lock(mutex_);
       tick_locked(true);
@@ -420,12 +426,23 @@ void Session::say(std::string_view text) {
 void Session::run(std::istream& in, bool prompt) {
   std::string line;
   while (!interrupted_.load()) {
+    if (const int sig = termination_signal()) {
+      // Ctrl-C, kill, a closed terminal: keep the recording (written first: the output may be gone).
+      stop_threads();
+      finish_recording();
+      say(fmt::format("interrupted by {}: quit", sig == SIGINT    ? "SIGINT"
+                                                 : sig == SIGTERM ? "SIGTERM"
+                                                 : sig == SIGHUP  ? "SIGHUP"
+                                                                  : fmt::format("signal {}", sig)));
+      return;
+    }
     if (prompt) {
       std::lock_guard lock(out_mutex_);
       out_ << "minigolf> ";
       out_.flush();
     }
     if (!std::getline(in, line)) {
+      if (termination_signal() != 0) continue;  // the read was interrupted by the signal
       say("end of input: quit");
       break;
     }

@@ -11,7 +11,7 @@
 ///                       (the console, the calling thread). One mutex guards the module and world;
 ///                       the robot and user updates hold it for microseconds.
 ///
-/// The module functions (core_update, robot_update, request_*) are the same in both; only the
+/// The module functions (control_tick, robot_update, request_*) are the same in both; only the
 /// scheduler differs. Commands are answered on the output stream; state changes, refusals and
 /// ball outcomes are printed as they happen. Bad input never throws out of `execute`.
 #include <array>
@@ -108,6 +108,8 @@ class Session {
   /// Never throws: bad commands and failed actions are answered.
   bool execute(std::string_view line);
   /// Reads lines until `quit` or the end of input (then quits). `prompt`: print "minigolf> ".
+  /// After mg::defer_termination_signals, a SIGINT/SIGTERM/SIGHUP ends a `wait` and the session
+  /// as `quit` does, the recording written first.
   void run(std::istream& in, bool prompt);
 
   // Observers (thread-safe).
@@ -143,6 +145,7 @@ class Session {
   void core_loop();
   void robot_loop();
   void stop_threads();
+  void finish_recording();  ///< writes an active recording and says so
   void say(std::string_view text);
   void do_command(const control::ConsoleCommand& command);
   void load_params(const std::string& path);

@@ -309,3 +309,34 @@ TEST(FullSystem, PuttsOnThreadsGiveTheSerialBits) {
 
 }  // namespace
 }  // namespace mg::control
+
+namespace mg::control {
+namespace {
+
+// The module sees the hit from measurements only (the club head by FK of the measured joints
+// against the perceived ball); the simulator's contact list is the cross-check: the module sees
+// it at most one physics step before the contact list has it (the contact is generated at the
+// start of a step, the module measures at its end) and never more than one step after.
+TEST(FullSystem, HitDetectionFromMeasurementsMatchesTheSimulatorsContact) {
+  Rig& r = rig();
+  int early = 0, n = 0;
+  for (double angle : {-0.3, 0.0, 0.3, 0.6}) {
+    for (double speed : {0.3, 0.8, 1.4, 2.2}) {
+      FullPuttOptions o = r.with_ball_world();
+      o.rest_start = RestStart::kKinematicApproach;
+      const FullPuttResult p = r.putt(angle, speed, o);
+      ASSERT_TRUE(p.hit) << angle << " " << speed;
+      ASSERT_TRUE(std::isfinite(p.hit_detection_lag)) << angle << " " << speed;
+      const double step = r.world.model()->opt.timestep;
+      EXPECT_GE(p.hit_detection_lag, -step - 1e-9) << angle << " " << speed;
+      EXPECT_LE(p.hit_detection_lag, step + 1e-9) << angle << " " << speed;
+      early += p.hit_detection_lag < -1e-9;
+      ++n;
+    }
+  }
+  std::printf("[hit detection] %d of %d putts seen a step before the simulator's contact list\n",
+              early, n);
+}
+
+}  // namespace
+}  // namespace mg::control

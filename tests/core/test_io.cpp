@@ -4,7 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <pthread.h>
+
+#include <cerrno>
+#include <chrono>
 #include <csignal>
+#include <thread>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -74,6 +79,64 @@ TEST(Io, AKilledWriteLeavesNoTemporaryFile) {
   }
   EXPECT_EQ(left, 0);
   std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace mg
+
+namespace mg {
+namespace {
+
+// Deferred termination (the console's recording on Ctrl-C): each case in its own process.
+TEST(IoSignals, FirstSignalIsDeferredAndRecorded) {
+  EXPECT_EXIT(
+      {
+        defer_termination_signals();
+        std::raise(SIGHUP);
+        std::_Exit(termination_signal() == SIGHUP ? 3 : 4);
+      },
+      ::testing::ExitedWithCode(3), "");
+}
+
+TEST(IoSignals, SecondSignalEndsTheProcess) {
+  EXPECT_EXIT(
+      {
+        defer_termination_signals();
+        std::raise(SIGTERM);
+        std::raise(SIGTERM);
+        std::_Exit(5);
+      },
+      ::testing::KilledBySignal(SIGTERM), "");
+}
+
+TEST(IoSignals, TerminateBySignalEndsByThatSignal) {
+  EXPECT_EXIT(
+      {
+        defer_termination_signals();
+        std::raise(SIGINT);
+        terminate_by_signal(termination_signal());
+      },
+      ::testing::KilledBySignal(SIGINT), "");
+}
+
+TEST(IoSignals, ASignalOnAnotherThreadReachesTheInputThread) {
+  // The input thread blocks in a read; the signal is sent to another thread: the read must be
+  // interrupted (forwarded), so the console can quit and write its recording.
+  EXPECT_EXIT(
+      {
+        int fds[2];
+        if (::pipe(fds) != 0) std::_Exit(10);
+        defer_termination_signals();
+        std::thread other([] {
+          std::this_thread::sleep_for(std::chrono::milliseconds(100));
+          pthread_kill(pthread_self(), SIGINT);  // delivered to this thread, not the reader
+        });
+        char c;
+        const ssize_t n = ::read(fds[0], &c, 1);  // nothing comes: only the signal ends it
+        other.join();
+        std::_Exit(n < 0 && errno == EINTR && termination_signal() == SIGINT ? 6 : 7);
+      },
+      ::testing::ExitedWithCode(6), "");
 }
 
 }  // namespace
