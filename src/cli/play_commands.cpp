@@ -289,7 +289,7 @@ void add_self_teach(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("self-teach", "The robot learns a field from its own putts alone: no teacher, no data set");
   add_system_options(cmd, a->sys);
   cmd->add_option("--budget", a->budget, "Full-system putts it may spend, misses included")->required();
-  cmd->add_option("--seed", a->seed, "Seed (candidate targets, GP restarts)")->capture_default_str();
+  cmd->add_option("--seed", a->seed, "Seed (candidate targets, GP restarts)")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--batch", a->batch, "Putts chosen together per round and played in parallel (the result depends on it, not on --threads)")
       ->capture_default_str();
   cmd->add_option("--situations", a->situations, "Region instead of the field's (as collect --situations)");
@@ -346,7 +346,7 @@ void add_curves(CLI::App& app) {
   cmd->add_option("--checkpoints", a->checkpoints, "Putt counts, increasing, comma-separated")->capture_default_str();
   cmd->add_option("--seeds", a->o.seeds, "Runs")->capture_default_str();
   cmd->add_option("--situations", a->o.situations, "Test situations per checkpoint")->capture_default_str();
-  cmd->add_option("--seed", a->o.seed, "Seed of the runs")->capture_default_str();
+  cmd->add_option("--seed", a->o.seed, "Seed of the runs")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--test-seed", a->o.test_seed, "Seed of the test situations")->capture_default_str();
   cmd->add_option("--region", a->situations_spec, "Region instead of the field's (as collect --situations)");
   cmd->add_option("-o,--output", a->out, "CSV to write")->required();

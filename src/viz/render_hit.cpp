@@ -37,7 +37,7 @@ class HitObserver final : public system::SessionObserver {
     }
     if (hit_start && !idle_start && (state == ModuleState::kHitting || state == ModuleState::kBraking))
       hit_poses.push_back(capture_pose(m, v.d));
-    if (hit_start && v.module.contact_seen && !impact) {
+    if (hit_start && v.module.ball_hit && !impact) {  // the module saw the hit (measured)
       impact = capture_pose(m, v.d);
     }
     if (state == ModuleState::kBraking && previous_state_ != ModuleState::kBraking && !braking_start)

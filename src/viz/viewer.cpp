@@ -36,12 +36,12 @@ class PathObserver final : public system::SessionObserver {
     const ModuleState state = v.module.state;
     if (state == ModuleState::kHitting && previous_ != ModuleState::kHitting) count = 0;
     previous_ = state;
-    if ((v.module.contact_seen || v.ball_rolling) && t >= next_ && count < kCapacity) {
+    if ((v.module.ball_hit || v.ball_rolling) && t >= next_ && count < kCapacity) {
       const mjtNum* b = v.d->qpos + v.world.ids().ball_qpos;
       path[static_cast<std::size_t>(count++)] = {b[0], b[1], b[2]};
       next_ = t + 0.01;
     }
-    if (!v.ball_rolling && !v.module.contact_seen) next_ = 0.0;
+    if (!v.ball_rolling && !v.module.ball_hit) next_ = 0.0;
   }
 
   std::array<std::array<double, 3>, kCapacity> path{};
