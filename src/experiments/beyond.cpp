@@ -104,16 +104,21 @@ std::map<std::string, std::string> beyond_thesis(const system::System& sys, cons
   const std::vector<double> perception = opt.quick ? std::vector<double>{0.0, 0.01} : std::vector<double>{0.0, 0.0025, 0.005, 0.0075, 0.01};
   const std::vector<double> torque = opt.quick ? std::vector<double>{0.01} : std::vector<double>{0.0, 0.0025, 0.005, 0.0075, 0.01};
   std::string pcurve = "method,x,median,p10,p90\n", tcurve = pcurve;
+  // kind 0: perception noise [m]; 1: torque noise [of the limits]. The same situations and draws for every model.
+  const auto noisy = [&](int kind, double level) {
+    EvaluateOptions ne;
+    ne.situations = opt.quick ? 30 : 100;
+    ne.seed = derive_seed(opt.seed, 79);
+    ne.threads = opt.threads;
+    ne.oracle = false;
+    ne.noise_seed = derive_seed(opt.seed, 80);
+    (kind == 0 ? ne.perception_noise : ne.torque_noise) = level;
+    return ne;
+  };
   for (const auto& [label, model] : players) {
     for (int kind = 0; kind < 2; ++kind)
       for (double level : kind == 0 ? perception : torque) {
-        EvaluateOptions ne;
-        ne.situations = opt.quick ? 30 : 100;
-        ne.seed = derive_seed(opt.seed, 79);
-        ne.threads = opt.threads;
-        ne.oracle = false;
-        ne.noise_seed = derive_seed(opt.seed, 80);
-        (kind == 0 ? ne.perception_noise : ne.torque_noise) = level;
+        const EvaluateOptions ne = noisy(kind, level);
         const auto e = evaluate_model(sys, *model, region, ne);
         const double x = kind == 0 ? 1000.0 * level : level;
         (kind == 0 ? pcurve : tcurve) += fmt::format("{},{},{},{},{}\n", label, x, e.success_ratio, e.ci95[0], e.ci95[1]);
@@ -134,13 +139,7 @@ std::map<std::string, std::string> beyond_thesis(const system::System& sys, cons
       ro.arrival_speed = selfteach::robust_arrival_speed(sys.field(), region, noise);
       const auto robust = selfteach::self_teach(sys, region, ro);
       if (!robust.trained) continue;
-      EvaluateOptions ne;
-      ne.situations = opt.quick ? 30 : 100;
-      ne.seed = derive_seed(opt.seed, 79);
-      ne.threads = opt.threads;
-      ne.oracle = false;
-      ne.noise_seed = derive_seed(opt.seed, 80);
-      (kind == 0 ? ne.perception_noise : ne.torque_noise) = level;
+      const EvaluateOptions ne = noisy(kind, level);
       const auto e = evaluate_model(sys, robust.model, region, ne);
       const double x = kind == 0 ? 1000.0 * level : level;
       const std::string label = "self-teach noise-aware";

@@ -80,18 +80,7 @@ CrkrResult crkr_learn(const system::System& system, const field::Situations& reg
     angle = std::clamp(angle, cfg.angle_min + 1e-6, cfg.angle_max - 1e-6);
     speed = std::clamp(speed, cfg.speed_min, cfg.speed_max);
     const auto r = system::arm_putt(system, data, hole, angle, speed);
-    PuttRecord p;
-    p.target = hole;
-    p.angle = angle;
-    p.speed = speed;
-    p.hit = r.hit;
-    p.sunk = r.outcome.sunk;
-    p.closest_approach = r.outcome.closest_approach;
-    p.launch_angle = r.launch.angle;
-    p.launch_speed = r.launch.speed;
-    p.approach_speed = r.outcome.approach_speed;
-    p.approach_lateral = r.outcome.approach_lateral;
-    p.approach_along = r.outcome.approach_along;
+    const PuttRecord p = record_putt(hole, angle, speed, r);
     res.sunk += p.sunk;
     res.putts.push_back(p);
     // The residuals are re-expressed against the prior with the launch relation as now measured.

@@ -195,6 +195,23 @@ std::array<double, 2> prior_club(const field::Field& field, const field::Situati
   return {g.angle - bias, region.learn_speed ? g.speed / ratio : region.speed};
 }
 
+PuttRecord record_putt(std::array<double, 2> target, double angle, double speed,
+                       const control::FullPuttResult& r) {
+  PuttRecord p;
+  p.target = target;
+  p.angle = angle;
+  p.speed = speed;
+  p.hit = r.hit;
+  p.sunk = r.outcome.sunk;
+  p.closest_approach = r.outcome.closest_approach;
+  p.launch_angle = r.launch.angle;
+  p.launch_speed = r.launch.speed;
+  p.approach_speed = r.outcome.approach_speed;
+  p.approach_lateral = r.outcome.approach_lateral;
+  p.approach_along = r.outcome.approach_along;
+  return p;
+}
+
 std::array<double, 2> launch_relation(const std::vector<PuttRecord>& putts) {
   std::vector<double> bias, ratio;
   for (const auto& p : putts)
@@ -323,18 +340,7 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
     for (int b = 0; b < round; ++b) {
       const auto k = static_cast<std::size_t>(b);
       const auto& r = results[k];
-      PuttRecord p;
-      p.target = targets[k];
-      p.angle = plans[k][0];
-      p.speed = plans[k][1];
-      p.hit = r.hit;
-      p.sunk = r.outcome.sunk;
-      p.closest_approach = r.outcome.closest_approach;
-      p.launch_angle = r.launch.angle;
-      p.launch_speed = r.launch.speed;
-      p.approach_speed = r.outcome.approach_speed;
-      p.approach_lateral = r.outcome.approach_lateral;
-      p.approach_along = r.outcome.approach_along;
+      PuttRecord p = record_putt(targets[k], plans[k][0], plans[k][1], r);
       const int index = static_cast<int>(res.putts.size());
       const auto ls = r.hit ? hindsight_labels(r.outcome.trajectory, p.target, hole_radius, rolling_decel, region,
                                                margin, p.angle, p.speed, index, rules)

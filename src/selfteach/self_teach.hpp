@@ -99,6 +99,9 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
 /// region's fixed speed for angle-only regions.
 std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,
                                  std::array<double, 2> hole, double arrival, double bias, double ratio);
+/// The record of a putt (angle, speed) at `target` with result `r` (labels not yet counted).
+PuttRecord record_putt(std::array<double, 2> target, double angle, double speed,
+                       const control::FullPuttResult& r);
 /// The launch relation (bias, ratio) measured on `putts` (medians; 0 and 1.6 before any).
 std::array<double, 2> launch_relation(const std::vector<PuttRecord>& putts);
 
