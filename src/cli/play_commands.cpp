@@ -283,6 +283,7 @@ void add_self_teach(CLI::App& app) {
     std::string situations, strategy, log, out;
     int budget = 0;
     int batch = 1;
+    double arrival = 0.0;
     std::uint64_t seed = 1;
   };
   auto a = std::make_shared<Args>();
@@ -295,6 +296,8 @@ void add_self_teach(CLI::App& app) {
   cmd->add_option("--situations", a->situations, "Region instead of the field's (as collect --situations)");
   cmd->add_option("--strategy", a->strategy, "min-speed | min-angle (default: the field's situations.strategy)");
   cmd->add_option("--log", a->log, "Also write one CSV row per putt here");
+  cmd->add_option("--arrival-speed", a->arrival, "Ball speed [m/s] to reach the hole with (default: the strategy's)")
+      ->check(finite_number(0.0, 2.0));
   cmd->add_option("-o,--output", a->out, "Learner model file to write (as minigolf train)")->required();
   cmd->callback([a] {
     selfteach::SelfTeachOptions o;
@@ -302,6 +305,7 @@ void add_self_teach(CLI::App& app) {
     o.batch = a->batch;
     o.seed = a->seed;
     o.threads = a->sys.threads;
+    o.arrival_speed = a->arrival;
     o.validate();
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
     field::Situations region = region_of(sys.field(), a->situations);

@@ -91,9 +91,11 @@ std::map<std::string, std::string> beyond_thesis(const system::System& sys, cons
   int k = 0;
   for (int r : right) k += r;
   const auto ci = wilson_interval(k, static_cast<int>(sample.size()));
-  md["hindsight"] += fmt::format("| {} | {} | {} | {} | {} | {:.0f} % ({:.0f}-{:.0f} %) |\n", name, taught.putts.size(),
-                                 taught.labels.size(), sample.size(), k,
-                                 sample.empty() ? 0.0 : 100.0 * k / static_cast<double>(sample.size()), 100 * ci[0], 100 * ci[1]);
+  md["hindsight"] += fmt::format("| {} | {} | {} | {} of {} | {} | {} |\n", name, taught.putts.size(), taught.labels.size(),
+                                 taught.on_target_sunk, taught.on_target, sample.size(),
+                                 sample.empty() ? std::string("- (every label lay at its own putt's target)")
+                                                : fmt::format("{} sank: {:.0f} % ({:.0f}-{:.0f} %)", k,
+                                                              100.0 * k / static_cast<double>(sample.size()), 100 * ci[0], 100 * ci[1]));
   opt.say(fmt::format("{}: hindsight labels replayed ({} of {} sank)", name, k, sample.size()));
 
   // ---- noise: perception (hole and ball position std) and execution (torque std)
@@ -138,7 +140,12 @@ std::map<std::string, std::string> beyond_thesis(const system::System& sys, cons
       ro.checkpoints = {};
       ro.arrival_speed = selfteach::robust_arrival_speed(sys.field(), region, noise);
       const auto robust = selfteach::self_teach(sys, region, ro);
-      if (!robust.trained) continue;
+      if (!robust.trained) {
+        md["noise"] += fmt::format("| {} | self-teach noise-aware (s* = {:.2f} m/s) | {} | {:g} | no model: {} labels in {} putts |\n", name,
+                                   ro.arrival_speed, kind == 0 ? "perception std [mm]" : "torque std [of limits]",
+                                   kind == 0 ? 1000.0 * level : level, robust.labels.size(), robust.putts.size());
+        continue;
+      }
       const EvaluateOptions ne = noisy(kind, level);
       const auto e = evaluate_model(sys, robust.model, region, ne);
       const double x = kind == 0 ? 1000.0 * level : level;
