@@ -54,12 +54,8 @@ std::vector<Prediction> predict_hits(const learning::Model& model, const field::
   Eigen::MatrixXd q(static_cast<Eigen::Index>(holes.size()), model.num_inputs());
   for (std::size_t i = 0; i < holes.size(); ++i)
     for (int c = 0; c < model.num_inputs(); ++c) {
-      const auto& n = model.input_names[static_cast<std::size_t>(c)];
-      const auto& h = holes[i];
-      q(static_cast<Eigen::Index>(i), c) = n == "xi_x"   ? h[0] - field.tee[0]
-                                           : n == "xi_y" ? h[1] - field.tee[1]
-                                           : n == "hole_x" ? h[0]
-                                                           : h[1];
+      q(static_cast<Eigen::Index>(i), c) =
+          field::situation_input(field, model.input_names[static_cast<std::size_t>(c)], holes[i]);
     }
   std::vector<Prediction> out(holes.size());
   if (holes.empty()) return out;
@@ -171,8 +167,7 @@ LearningEvaluation evaluate_learning(const system::System& system, const learnin
   selfteach::HindsightRules rules;
   rules.learn_speed = is >= 0;
   rules.arrival_speed = teacher::arrival_speed(field, options.teacher.strategy);
-  const auto b = selfteach::region_bounds(region);
-  const double margin = 0.05 + 0.25 * std::max(b[1] - b[0], b[3] - b[2]);
+  const double margin = selfteach::label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
   const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
   const auto holes = region.sample(options.situations, options.seed);
@@ -210,11 +205,8 @@ LearningEvaluation evaluate_learning(const system::System& system, const learnin
                                                         region, margin, a, v, i, rules);
         for (const auto& l : labels) {
           Eigen::VectorXd x(out.learned.num_inputs());
-          for (int col = 0; col < out.learned.num_inputs(); ++col) {
-            const auto& name = out.learned.input_names[static_cast<std::size_t>(col)];
-            x(col) = name == "xi_x" ? l.hole[0] - field.tee[0] : name == "xi_y" ? l.hole[1] - field.tee[1]
-                     : name == "hole_x" ? l.hole[0] : l.hole[1];
-          }
+          for (int col = 0; col < out.learned.num_inputs(); ++col)
+            x(col) = field::situation_input(field, out.learned.input_names[static_cast<std::size_t>(col)], l.hole);
           for (int o = 0; o < out.learned.num_outputs(); ++o) {
             stats::GpModel& gp = out.learned.gps[static_cast<std::size_t>(o)];
             Eigen::MatrixXd xs(gp.inputs.rows() + 1, gp.inputs.cols());

@@ -107,8 +107,7 @@ CurveRun teacher_run(const system::System& sys, const field::Situations& region,
       for (std::size_t i = 0; i < use.size(); ++i) {
         const auto r = static_cast<Eigen::Index>(i);
         for (std::size_t c2 = 0; c2 < inputs.size(); ++c2)
-          d.inputs(r, static_cast<Eigen::Index>(c2)) =
-              inputs[c2] == "xi_x" ? use[i]->hole[0] - sys.field().tee[0] : use[i]->hole[1] - sys.field().tee[1];
+          d.inputs(r, static_cast<Eigen::Index>(c2)) = field::situation_input(sys.field(), inputs[c2], use[i]->hole);
         d.outputs(r, 0) = use[i]->angle;
         if (outputs.size() > 1) d.outputs(r, 1) = use[i]->speed;
       }

@@ -67,6 +67,14 @@ std::string to_string(RegionShape shape) {
   return "?";
 }
 
+double situation_input(const Field& field, std::string_view name, std::array<double, 2> hole) {
+  if (name == "xi_x") return hole[0] - field.tee[0];
+  if (name == "xi_y") return hole[1] - field.tee[1];
+  if (name == "hole_x") return hole[0];
+  if (name == "hole_y") return hole[1];
+  throw InputError(fmt::format("input '{}' is not a situation (expected xi_x, xi_y, hole_x or hole_y)", name));
+}
+
 std::vector<std::string> Situations::learner_inputs() const {
   if (shape == RegionShape::kLine)
     return {std::abs(to[1] - from[1]) >= std::abs(to[0] - from[0]) ? "xi_y" : "xi_x"};

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/rng.hpp"
@@ -52,6 +53,10 @@ struct Situations {
   /// region leaves the field's lane, or a count or range is unusable.
   void validate(const Field& field, const std::string& where = "") const;
 };
+
+/// The value of a learner input for a hole on `field`: xi_x, xi_y (hole - tee), hole_x or hole_y
+/// [m]. Throws InputError for another name.
+double situation_input(const Field& field, std::string_view name, std::array<double, 2> hole);
 
 /// The default region of a field without a `situations` section.
 Situations default_situations(const Field& field);

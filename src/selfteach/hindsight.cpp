@@ -36,6 +36,11 @@ std::array<double, 4> region_bounds(const field::Situations& region) {
   return {region.x_range[0], region.x_range[1], region.y_range[0], region.y_range[1]};
 }
 
+double label_margin(const field::Situations& region) {
+  const auto b = region_bounds(region);
+  return 0.05 + 0.25 * std::max(b[1] - b[0], b[3] - b[2]);
+}
+
 bool in_label_zone(const field::Situations& region, std::array<double, 2> p, double margin) {
   const auto b = region_bounds(region);
   return p[0] >= b[0] - margin && p[0] <= b[1] + margin && p[1] >= b[2] - margin &&

@@ -39,6 +39,10 @@ struct HindsightRules {
 /// Axis-aligned bounds of a region's holes (x0, x1, y0, y1) [m].
 std::array<double, 4> region_bounds(const field::Situations& region);
 
+/// The margin labels are kept within [m]: 5 cm + a quarter of the region's larger extent (labels
+/// just outside help the model at the region's edges).
+double label_margin(const field::Situations& region);
+
 /// Where labels may lie: the region's bounds grown by `margin` [m] on every side.
 bool in_label_zone(const field::Situations& region, std::array<double, 2> p, double margin);
 

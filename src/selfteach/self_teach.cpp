@@ -52,7 +52,7 @@ Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::stri
                           std::array<double, 2> hole) {
   Eigen::VectorXd x(static_cast<Eigen::Index>(inputs.size()));
   for (std::size_t c = 0; c < inputs.size(); ++c)
-    x(static_cast<Eigen::Index>(c)) = inputs[c] == "xi_x" ? hole[0] - field.tee[0] : hole[1] - field.tee[1];
+    x(static_cast<Eigen::Index>(c)) = field::situation_input(field, inputs[c], hole);
   return x;
 }
 
@@ -180,11 +180,6 @@ std::vector<std::array<double, 2>> candidate_targets(const field::Situations& re
   }
   for (const auto& p : region.sample(n, derive_seed(seed, 13))) c.push_back(p);
   return c;
-}
-
-double label_margin(const field::Situations& region) {
-  const auto b = region_bounds(region);
-  return 0.05 + 0.25 * std::max(b[1] - b[0], b[3] - b[2]);
 }
 
 }  // namespace
