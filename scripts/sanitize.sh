@@ -8,10 +8,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 what="${1:-all}"
 jobs="${JOBS:-2}"
+# ccache (if installed) makes a rerun after a fix cheap.
+launcher=()
+if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache); fi
 
 if [[ $what == asan || $what == all ]]; then
   start=$(date +%s)
-  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINIGOLF_BUILD_BENCHMARKS=OFF \
+  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINIGOLF_BUILD_BENCHMARKS=OFF "${launcher[@]}" \
     -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" \
     -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" >/dev/null
   nice -n 10 cmake --build build-asan -j"$jobs"
@@ -27,11 +30,11 @@ fi
 
 if [[ $what == tsan || $what == all ]]; then
   start=$(date +%s)
-  cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINIGOLF_BUILD_BENCHMARKS=OFF \
+  cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINIGOLF_BUILD_BENCHMARKS=OFF "${launcher[@]}" \
     -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
-  nice -n 10 cmake --build build-tsan -j"$jobs" --target test_system minigolf
+  nice -n 10 cmake --build build-tsan -j"$jobs" --target test_system test_system_realtime test_cli minigolf
   built=$(date +%s)
   (cd build-tsan && TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \
-     nice -n 10 ctest -j1 --output-on-failure --timeout 3000 -R 'Session|Realtime|RealTime')
+     nice -n 10 ctest -j1 --output-on-failure --timeout 3000 -R '^(Session|Realtime|ConsoleSignalRealtime)\.')
   echo "sanitize.sh: TSan (real-time session): build $((built - start)) s, tests $(( $(date +%s) - built )) s"
 fi

@@ -1,7 +1,11 @@
 // ds demos | ds fit | ds check | ds rollout (the hitting motion; see notes/ds.md).
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -13,6 +17,7 @@
 #include "core/io.hpp"
 #include "core/json_io.hpp"
 #include "cli/cli_util.hpp"
+#include "cli/progress.hpp"
 #include "ds/demonstrations.hpp"
 #include "ds/hitting_ds.hpp"
 #include "ds/hitting_model.hpp"
@@ -87,8 +92,18 @@ void add_fit(CLI::App& ds) {
     opt.seds.objective = ds::parse_seds_objective(o->objective);
     opt.seds.seed = o->seed;
     opt.seds.max_evaluations = o->max_evaluations;
+    // On a terminal, the fit's evaluations (up to --max-evaluations per attempt; a fit that
+    // needs a fallback makes more attempts, each noted afterwards).
+    std::optional<Progress> progress;
+    if (!o->json && isatty(fileno(stderr)) != 0) {
+      progress.emplace(fmt::format("SEDS fit, K = {}", o->gaussians), o->max_evaluations);
+      opt.seds.on_evaluation = [&progress](int evaluations) {
+        if (evaluations % 10 == 0) progress->update(evaluations);
+      };
+    }
     ds::HittingFitReport rep;
     ds::HittingModel model = ds::fit_hitting_model(demos, opt, &rep);
+    if (progress) progress->finish();
     const auto err = ds::reproduction_error(model, demos);
     model.provenance["demonstrations_file"] = std::filesystem::path(o->demos).filename().string();
     model.provenance["reproduction"] = {{"velocity_rmse", err.velocity_rmse},

@@ -416,6 +416,7 @@ double max_constraint(const std::vector<double>& x, int kc, int b) {
 double nlopt_objective(const std::vector<double>& x, std::vector<double>& grad, void* raw) {
   auto* ctx = static_cast<OptContext*>(raw);
   ++ctx->evaluations;
+  if (ctx->options->on_evaluation) ctx->options->on_evaluation(ctx->evaluations);
   const Eigen::Map<const Eigen::VectorXd> p(x.data(), static_cast<Eigen::Index>(x.size()));
   Eigen::VectorXd g;
   const double v = seds_objective(p, *ctx->data, ctx->options->objective, ctx->options->covariance_floor, *ctx->templ,

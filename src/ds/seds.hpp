@@ -17,6 +17,7 @@
 /// log-Cholesky of Sigma (6: L00, L10, L11, L20, L21, L22 with the diagonal as log), A (9,
 /// column-major), and for the likelihood objective the log-Cholesky of C (6).
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,8 @@ struct SedsOptions {
   /// round-off. The hitting-model fit retries with 500 1/s (a 2 ms time constant) when that
   /// happens (see fit_hitting_model).
   double max_rate = 0.0;
+  /// Called after every objective evaluation with the count so far (progress display; may be empty).
+  std::function<void(int evaluations)> on_evaluation;
   void validate() const;
 };
 

@@ -39,17 +39,18 @@ std::vector<int> iota_dims(int first, int count) {
   return v;
 }
 
-// Mean squared GMR error (standardised outputs) of K components by cross-validation.
-double cv_error(const Eigen::MatrixXd& joint, int num_inputs, int k, int folds, const std::vector<int>& fold_of,
-                std::uint64_t seed, const stats::EmOptions& em) {
+// Squared GMR error (standardised outputs, summed over outputs) of every row when it is held
+// out, K components, by cross-validation.
+Eigen::VectorXd cv_errors(const Eigen::MatrixXd& joint, int num_inputs, int k, int folds, const std::vector<int>& fold_of,
+                          std::uint64_t seed, const stats::EmOptions& em) {
   const Eigen::Index n = joint.rows();
   const int num_outputs = static_cast<int>(joint.cols()) - num_inputs;
-  double sse = 0.0;
+  Eigen::VectorXd err = Eigen::VectorXd::Zero(n);
   for (int f = 0; f < folds; ++f) {
     std::vector<Eigen::Index> train_rows, test_rows;
     for (Eigen::Index i = 0; i < n; ++i) (fold_of[static_cast<std::size_t>(i)] == f ? test_rows : train_rows).push_back(i);
     if (test_rows.empty()) continue;
-    if (static_cast<int>(train_rows.size()) < k) return std::numeric_limits<double>::infinity();
+    if (static_cast<int>(train_rows.size()) < k) return Eigen::VectorXd::Constant(n, std::numeric_limits<double>::infinity());
     Eigen::MatrixXd train(static_cast<Eigen::Index>(train_rows.size()), joint.cols());
     for (std::size_t i = 0; i < train_rows.size(); ++i) train.row(static_cast<Eigen::Index>(i)) = joint.row(train_rows[i]);
     mg::Rng rng(mg::derive_seed(seed, static_cast<std::uint64_t>(1000 * k + f)));
@@ -59,10 +60,10 @@ double cv_error(const Eigen::MatrixXd& joint, int num_inputs, int k, int folds, 
     Eigen::VectorXd out(num_outputs);
     for (Eigen::Index r : test_rows) {
       cond.predict_mean(joint.row(r).head(num_inputs).transpose(), out, ws);
-      sse += (out - joint.row(r).tail(num_outputs).transpose()).squaredNorm();
+      err(r) = (out - joint.row(r).tail(num_outputs).transpose()).squaredNorm();
     }
   }
-  return sse / static_cast<double>(n);
+  return err;
 }
 
 // Seeded shuffle of n rows into `folds` folds.
@@ -75,15 +76,34 @@ std::vector<int> make_folds(int n, int folds, mg::Rng& rng) {
   return fold_of;
 }
 
-// cv_error, or +inf if a fold's fit fails (a value of reg_covar too small for the data).
-double cv_error_or_inf(const Eigen::MatrixXd& joint, int num_inputs, int k, int folds, const std::vector<int>& fold_of,
-                       std::uint64_t seed, const stats::EmOptions& em) {
+// cv_errors, or +inf everywhere if a fold's fit fails (a value of reg_covar too small for the data).
+Eigen::VectorXd cv_errors_or_inf(const Eigen::MatrixXd& joint, int num_inputs, int k, int folds,
+                                 const std::vector<int>& fold_of, std::uint64_t seed, const stats::EmOptions& em) {
+  const auto failed = [&] { return Eigen::VectorXd::Constant(joint.rows(), std::numeric_limits<double>::infinity()); };
   try {
-    const double e = cv_error(joint, num_inputs, k, folds, fold_of, seed, em);
-    return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
+    const Eigen::VectorXd e = cv_errors(joint, num_inputs, k, folds, fold_of, seed, em);
+    return e.allFinite() ? e : failed();
   } catch (const Error&) {
-    return std::numeric_limits<double>::infinity();
+    return failed();
   }
+}
+
+double mean_or_inf(const Eigen::VectorXd& e) {
+  return e.allFinite() ? e.mean() : std::numeric_limits<double>::infinity();
+}
+
+// Whether `candidate`'s held-out errors are measurably below `baseline`'s: lower by at least
+// min_gain of the baseline's mean, and the paired mean difference more than two standard
+// errors below zero (rows are the pairs: the same folds hold the same rows out).
+bool measurably_lower(const Eigen::VectorXd& candidate, const Eigen::VectorXd& baseline, double min_gain) {
+  if (candidate.size() == 0 || !candidate.allFinite()) return false;
+  if (baseline.size() != candidate.size() || !baseline.allFinite()) return true;  // the baseline failed
+  const Eigen::Index n = candidate.size();
+  if (n < 2) return false;
+  const Eigen::VectorXd d = candidate - baseline;
+  const double mean = d.mean();
+  const double se = std::sqrt((d.array() - mean).square().sum() / static_cast<double>(n - 1) / static_cast<double>(n));
+  return mean < -min_gain * baseline.mean() && mean < -2.0 * se;
 }
 
 struct GmmFit {
@@ -102,49 +122,57 @@ GmmFit fit_gmm_model(const Eigen::MatrixXd& joint, int num_inputs, const TrainOp
   const std::vector<int> fold_of = make_folds(n, folds, fold_rng);
   const std::vector<double> regs = opt.choose_reg_covar ? opt.reg_covar_grid : std::vector<double>{opt.em.reg_covar};
 
-  // The default em.reg_covar (1e-2, best on small noisy sets) stays unless another value's
-  // held-out GMR error is lower by more than kRegSwitchGain: on noisy data the differences are
-  // within cross-validation noise, on clean data 1e-2 over-smooths by factors (issue 13). Below
+  // The default reg_covar is a prior of fixed strength: reg_covar_rows / N (em.reg_covar at
+  // most, 1e-2: best on the smallest noisy sets), as a Normal-inverse-Wishart prior's weight
+  // falls as 1/N. It stays unless another value's held-out GMR error is measurably lower
+  // (measurably_lower: by kRegSwitchGain and two paired standard errors). Below
   // kMinRowsForRegSelection rows (folds of one or two points) the default is kept.
-  constexpr double kRegSwitchGain = 0.2;
+  constexpr double kRegSwitchGain = 0.05;
   constexpr int kMinRowsForRegSelection = 10;
-  const double default_reg = opt.em.reg_covar;
+  const double default_reg =
+      opt.choose_reg_covar
+          ? std::min(opt.em.reg_covar,
+                     std::max(*std::min_element(regs.begin(), regs.end()), opt.reg_covar_rows / static_cast<double>(n)))
+          : opt.em.reg_covar;
   int best_k = opt.num_gaussians;
   double best_reg = default_reg;
   auto choose = [&](const std::vector<int>& ks) {
+    Eigen::VectorXd err_default, err_other;
     double best_default = std::numeric_limits<double>::infinity(), best_other = best_default;
     int k_default = ks.front(), k_other = ks.front();
     double reg_other = default_reg;
     for (int k : ks) {
       stats::EmOptions em = opt.em;
       em.reg_covar = default_reg;
-      const double e = cv_error_or_inf(joint, num_inputs, k, folds, fold_of, seed, em);
-      if (e < best_default * (1.0 - 1e-12)) {
-        best_default = e;
+      Eigen::VectorXd e = cv_errors_or_inf(joint, num_inputs, k, folds, fold_of, seed, em);
+      if (mean_or_inf(e) < best_default * (1.0 - 1e-12)) {
+        best_default = mean_or_inf(e);
+        err_default = std::move(e);
         k_default = k;
       }
       if (n < kMinRowsForRegSelection) continue;
       for (auto it = regs.rbegin(); it != regs.rend(); ++it) {
         if (*it == default_reg) continue;
         em.reg_covar = *it;
-        const double eo = cv_error_or_inf(joint, num_inputs, k, folds, fold_of, seed, em);
-        if (eo < best_other * (1.0 - 1e-2)) {
-          best_other = eo;
+        Eigen::VectorXd eo = cv_errors_or_inf(joint, num_inputs, k, folds, fold_of, seed, em);
+        if (mean_or_inf(eo) < best_other * (1.0 - 1e-2)) {
+          best_other = mean_or_inf(eo);
+          err_other = std::move(eo);
           k_other = k;
           reg_other = *it;
         }
       }
     }
-    if (best_other < (1.0 - kRegSwitchGain) * best_default || !std::isfinite(best_default)) {
+    if (!std::isfinite(best_default) && !std::isfinite(best_other))
+      throw NumericalError(fmt::format("GMM fit: every cross-validation fit failed (K in {}..{}, reg_covar in {}..{})",
+                                       ks.front(), ks.back(), regs.front(), regs.back()));
+    if (std::isfinite(best_other) && measurably_lower(err_other, err_default, kRegSwitchGain)) {
       best_k = k_other;
       best_reg = reg_other;
     } else {
       best_k = k_default;
       best_reg = default_reg;
     }
-    if (!std::isfinite(best_default) && !std::isfinite(best_other))
-      throw NumericalError(fmt::format("GMM fit: every cross-validation fit failed (K in {}..{}, reg_covar in {}..{})",
-                                       ks.front(), ks.back(), regs.front(), regs.back()));
   };
   if (opt.num_gaussians > 0) {
     if (regs.size() > 1) choose({opt.num_gaussians});
@@ -252,6 +280,8 @@ void TrainOptions::validate() const {
   if (!choose_reg_covar && !(em.reg_covar > 0.0))
     throw InputError(fmt::format("reg_covar: expected a number > 0 (standardised units), got {}", em.reg_covar));
   if (choose_reg_covar) {
+    if (!(reg_covar_rows > 0.0) || !std::isfinite(reg_covar_rows))
+      throw InputError(fmt::format("reg_covar_rows: expected a number > 0, got {}", reg_covar_rows));
     if (reg_covar_grid.empty()) throw InputError("reg_covar grid: expected at least one value");
     for (double r : reg_covar_grid)
       if (!(r > 0.0) || !std::isfinite(r))

@@ -40,10 +40,13 @@ struct TrainOptions {
   int restarts = 10;         ///< GPR optimiser starts and k-means++ seedings (>= 1)
   std::uint64_t seed = 1;    ///< everything random derives from it
   stats::EmOptions em{300, 1e-8, 1e-2, 5};  ///< reg_covar in standardised units (used as is when !choose_reg_covar)
-  /// Choose reg_covar from `reg_covar_grid` by cross-validated GMR error (cv_folds folds, the
-  /// same folds for every value) instead of using em.reg_covar: no single value suits both noisy
-  /// data (1e-2 is best at 10-50 noisy points) and clean data (1e-2 over-smooths it 4x).
+  /// Choose reg_covar from the data instead of using em.reg_covar: no single value suits both
+  /// noisy data (1e-2 is best at a few noisy points) and clean data (1e-2 over-smooths it 4x).
+  /// The default is reg_covar_rows / N (at most em.reg_covar); a value of `reg_covar_grid` replaces
+  /// it when its cross-validated GMR error (cv_folds folds, the same for every value) is
+  /// measurably lower.
   bool choose_reg_covar = true;
+  double reg_covar_rows = 0.05;  ///< > 0; 1e-3 at 50 rows, 1e-2 up to 5 rows
   std::vector<double> reg_covar_grid{1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1};
   /// GPR initial guesses and bounds (data units): empty = defaults; one entry = all outputs;
   /// else one per output. Their `restarts` is overridden by `restarts` above.
