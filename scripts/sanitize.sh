@@ -20,11 +20,16 @@ if [[ $what == asan || $what == all ]]; then
   nice -n 10 cmake --build build-asan -j"$jobs"
   built=$(date +%s)
   # MuJoCo's and Python's own allocations are not ours: leaks are checked in our tests only
-  # through the suppressions file.
-  (cd build-asan && ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1" \
-     LSAN_OPTIONS="suppressions=$PWD/../scripts/sanitize.supp:print_suppressions=0" \
-     UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
-     nice -n 10 ctest -j"$jobs" --output-on-failure --timeout 3000 -E '^python_')
+  # through the suppressions file. The Python tests are left out (the interpreter is not
+  # instrumented). The viewer/renderer tests run without leak checking: Mesa's GL driver, loaded
+  # and unloaded by libGL, leaves 240 bytes per process that no suppression can name (its frames
+  # are "<unknown module>" once it is unloaded); they still run under ASan and UBSan.
+  export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
+  export LSAN_OPTIONS="suppressions=$PWD/scripts/sanitize.supp:print_suppressions=0"
+  export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+  (cd build-asan && nice -n 10 ctest -j"$jobs" --output-on-failure --timeout 3000 -E '^(python_|viz_under_xvfb$)')
+  (cd build-asan && ASAN_OPTIONS="detect_leaks=0:abort_on_error=1" nice -n 10 ctest --output-on-failure --timeout 3000 \
+     -R '^viz_under_xvfb$')
   echo "sanitize.sh: ASan + UBSan: build $((built - start)) s, tests $(( $(date +%s) - built )) s"
 fi
 

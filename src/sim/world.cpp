@@ -6,6 +6,7 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
@@ -230,6 +231,7 @@ std::string predefined_pairs(const mjModel* m) {
   };
   struct Pair {
     int b1, b2, g1, g2;
+    std::size_t order;  // discovery order: ties keep it (as stable_sort would, without its buffer)
   };
   std::vector<Pair> pairs;
   for (int g1 = 0; g1 < m->ngeom; ++g1)
@@ -240,10 +242,12 @@ std::string predefined_pairs(const mjModel* m) {
             (m->geom_contype[g2] & m->geom_conaffinity[g1])))
         continue;
       if (excluded(b1, b2)) continue;
-      pairs.push_back(b1 < b2 ? Pair{b1, b2, g1, g2} : Pair{b2, b1, g2, g1});
+      pairs.push_back(b1 < b2 ? Pair{b1, b2, g1, g2, pairs.size()} : Pair{b2, b1, g2, g1, pairs.size()});
     }
-  std::stable_sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
-    return a.b1 != b.b1 ? a.b1 < b.b1 : a.b2 < b.b2;
+  // std::sort with a total order: std::stable_sort's temporary buffer (operator new, freed by
+  // libstdc++ 12 through free) is an alloc-dealloc mismatch under AddressSanitizer.
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) {
+    return std::tie(a.b1, a.b2, a.order) < std::tie(b.b1, b.b2, b.order);
   });
   for (const Pair& p : pairs) {
     const int g1 = p.g1, g2 = p.g2;

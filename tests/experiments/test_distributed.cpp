@@ -122,7 +122,8 @@ TEST(Wire, ATruncatedMessageIsAnError) {
   double v = 0;
   system::WireReader r(cut);
   EXPECT_THROW(r(s, v), Error);
-  system::WireReader huge(std::string(8, '\xff'));  // a length beyond the message
+  const std::string length_only(8, '\xff');  // a length beyond the message (the reader keeps a view)
+  system::WireReader huge(length_only);
   EXPECT_THROW(huge(s), Error);
 }
 
