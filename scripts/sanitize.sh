@@ -40,6 +40,6 @@ if [[ $what == tsan || $what == all ]]; then
   nice -n 10 cmake --build build-tsan -j"$jobs" --target test_system test_system_realtime test_cli minigolf
   built=$(date +%s)
   (cd build-tsan && TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \
-     nice -n 10 ctest -j1 --output-on-failure --timeout 3000 -R '^(Session|Realtime|ConsoleSignalRealtime)\.')
+     nice -n 10 ctest -j1 --output-on-failure --timeout 3000 -R '^(Session|System|Realtime|ConsoleSignalRealtime)\.')
   echo "sanitize.sh: TSan (real-time session): build $((built - start)) s, tests $(( $(date +%s) - built )) s"
 fi
