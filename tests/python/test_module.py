@@ -153,44 +153,6 @@ def test_long_calls_release_the_gil(flat):
     assert overlap > 0.5 * busy, (overlap, busy)
 
 
-def putts(system, n, threads=1):
-    def run():
-        data = system.make_data()
-        for k in range(n):
-            system.putt(0.001 * k, 2.0, ball_only=True, data=data, record_interval=0.0)
-    pool = [threading.Thread(target=run) for _ in range(threads)]
-    t = time.perf_counter()
-    for th in pool:
-        th.start()
-    for th in pool:
-        th.join()
-    return time.perf_counter() - t
-
-
-def test_two_threads_finish_faster_than_twice_one(flat):
-    # Python threads against the library's own pool doing the same (1 thread: n putts; 2 threads:
-    # 2n), interleaved, medians of three: the machine is shared by other jobs.
-    import os
-    if len(os.sched_getaffinity(0)) < 2:
-        pytest.skip("needs 2 cores")
-    n, ours, pool = 12, [], []
-    angles = [0.001 * k for k in range(n)]
-    for _ in range(3):
-        one = putts(flat, n)
-        ours.append(putts(flat, n, threads=2) / one)
-        t = time.perf_counter()
-        flat.sweep(angles, [2.0], ball_only=True, threads=1)
-        single = time.perf_counter() - t
-        t = time.perf_counter()
-        flat.sweep(angles, [2.0, 2.0], ball_only=True, threads=2)
-        pool.append((time.perf_counter() - t) / single)
-    ours, pool = sorted(ours)[1], sorted(pool)[1]
-    if pool > 1.7:
-        pytest.skip(f"this process does not get 2 cores now (the C++ pool's 2 threads: {pool:.2f} x 1 thread's "
-                    f"time for twice the putts; Python threads: {ours:.2f} x)")
-    assert ours < max(1.7, 1.25 * pool), f"two Python threads: {ours:.2f} x one's time (C++ pool: {pool:.2f} x)"
-
-
 def test_one_system_data_per_thread(flat):
     data = flat.make_data()
     errors = []
