@@ -39,11 +39,21 @@ nlohmann::json outcome_json(const std::string& field, std::array<double, 2> hole
   };
 }
 
+// Trajectory samples are 10 ms apart (the recorded outcome is the same bits as without).
+constexpr double kTrajectoryInterval = 0.01;
+
+void write_trajectory_csv(const std::string& path, const sim::PuttOutcome& out) {
+  std::vector<std::vector<double>> rows;
+  rows.reserve(out.trajectory.size());
+  for (const auto& s : out.trajectory) rows.push_back({s.t, s.x, s.y, s.z, s.vx, s.vy, s.vz});
+  write_file_atomic(path, format_csv({"t", "x", "y", "z", "vx", "vy", "vz"}, rows));
+}
+
 // The arm hits the ball: the module runs in lockstep simulator mode.
 void run_full_system_putt(const std::string& field_name, const std::string& hole_text,
                           double angle, double speed, double max_duration,
                           const std::string& model_path, const std::string& config_path,
-                          bool json) {
+                          bool json, const std::string& trajectory_path) {
   const system::System sys(system::load_config(config_path, field_name, model_path));
   sys.check_request(angle, speed, "putt");
   if (!std::isfinite(max_duration) || max_duration <= 0.0)
@@ -52,11 +62,13 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
   system::SystemData data(sys);
   control::FullPuttOptions options;
   options.max_duration = max_duration;
+  options.record_interval = trajectory_path.empty() ? 0.0 : kTrajectoryInterval;
   const control::FullPuttResult r = system::arm_putt(sys, data, hole, angle, speed, options);
   const sim::World& world = sys.arm_world();
   if (r.hit_refused) throw InputError("putt: the module refused the hit request");
   if (!r.hit) throw NumericalError("putt: the club did not reach the ball");
   const sim::PuttOutcome& out = r.outcome;
+  if (!trajectory_path.empty()) write_trajectory_csv(trajectory_path, out);
   if (json) {
     nlohmann::json j = outcome_json(world.field().name, hole, angle, speed, out);
     j["club"] = {{"angle", r.club.angle}, {"speed", r.club.speed}};
@@ -103,7 +115,8 @@ void add_putt_command(CLI::App& app) {
   cmd->add_flag("--ball-only", o->ball_only, "Launch the ball directly (no arm)");
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->add_option("--trajectory", o->trajectory,
-                  "Write the ball trajectory to this CSV file (--ball-only)");
+                  "Write the ball trajectory to this CSV file (t from the launch; with the arm, "
+                  "from the club's first contact)");
   cmd->add_option("--hitting-model", o->hitting_model,
                   "Hitting DS model file (default: data/models/hitting-default.json)");
   cmd->add_option("--config", o->config,
@@ -111,14 +124,14 @@ void add_putt_command(CLI::App& app) {
   cmd->callback([o] {
     if (!o->ball_only) {
       run_full_system_putt(o->field, o->hole, o->angle, o->speed, o->max_duration,
-                           o->hitting_model, o->config, o->json);
+                           o->hitting_model, o->config, o->json, o->trajectory);
       return;
     }
     sim::PuttRequest request;
     request.angle = o->angle;
     request.speed = o->speed;
     request.max_duration = o->max_duration;
-    request.record_interval = o->trajectory.empty() ? 0.0 : 0.01;
+    request.record_interval = o->trajectory.empty() ? 0.0 : kTrajectoryInterval;
     request.validate();
     const system::System sys(system::load_config(o->config, o->field, o->hitting_model));
     const sim::World& world = sys.ball_world();
@@ -127,12 +140,7 @@ void add_putt_command(CLI::App& app) {
     system::SystemData data(sys);
     const sim::PuttOutcome out = simulate_putt(world, data.ball.get(), hole, request);
 
-    if (!o->trajectory.empty()) {
-      std::vector<std::vector<double>> rows;
-      rows.reserve(out.trajectory.size());
-      for (const auto& s : out.trajectory) rows.push_back({s.t, s.x, s.y, s.z, s.vx, s.vy, s.vz});
-      write_file_atomic(o->trajectory, format_csv({"t", "x", "y", "z", "vx", "vy", "vz"}, rows));
-    }
+    if (!o->trajectory.empty()) write_trajectory_csv(o->trajectory, out);
     if (o->json) {
       const nlohmann::json j = outcome_json(world.field().name, hole, o->angle, o->speed, out);
       fmt::print("{}\n", j.dump());

@@ -180,6 +180,7 @@ PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle,
     throw InputError(fmt::format("putt: --max-duration: expected > 0 s, got {}", max_duration));
   control::FullPuttOptions options;
   options.max_duration = max_duration;
+  options.record_interval = record_interval;
   const control::FullPuttResult f = system::arm_putt(sys, data, r.hole, angle, speed, options);
   if (f.hit_refused) throw InputError("putt: the module refused the hit request");
   if (!f.hit) throw NumericalError("putt: the club did not reach the ball");
@@ -479,8 +480,8 @@ PYBIND11_MODULE(_minigolf, m) {
            py::arg("max_duration") = 30.0, py::arg("record_interval") = 0.01, py::arg("data") = py::none(),
            "One putt. Arm (default): hitting angle `angle` [rad] and club speed `speed` [m/s] within the safe "
            "envelope. ball_only: the ball launched from the tee at `angle` [rad], `speed` [m/s]. hole: (x, y) "
-           "[m] (default: the field's). max_duration [s]; record_interval: trajectory spacing [s] (ball only; "
-           "0: none). data: a SystemData of this System (default: a fresh one). Releases the GIL.")
+           "[m] (default: the field's). max_duration [s]; record_interval: trajectory spacing [s] (0: none; "
+           "time from the launch, with the arm from the club's first contact). data: a SystemData of this System (default: a fresh one). Releases the GIL.")
       .def("teach",
            [](const system::System& s, std::array<double, 2> hole, const std::string& strategy, int max_full_putts,
               int max_ball_putts, double margin_angle, double margin_speed, PySystemData* data) {

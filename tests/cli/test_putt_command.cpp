@@ -1,5 +1,9 @@
+#include <array>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -37,6 +41,36 @@ TEST(PuttCommand, TrajectoryCsvHasTheDocumentedHeader) {
   int rows = 0;
   for (std::string line; std::getline(in, line);) ++rows;
   EXPECT_GT(rows, 10);
+  std::filesystem::remove(path);
+}
+
+TEST(PuttCommand, ArmPuttWritesTheTrajectoryFromTheFirstContactAndTheSameOutcome) {
+  const auto path = std::filesystem::temp_directory_path() / "mg_arm_traj.csv";
+  std::filesystem::remove(path);
+  const std::string args = "putt --field flat --angle 0.01 --speed 1.6 --json";
+  const auto plain = run_minigolf(args);
+  const auto recorded = run_minigolf(args + " --trajectory " + path.string());
+  ASSERT_EQ(recorded.exit_code, 0) << recorded.err;
+  auto a = nlohmann::json::parse(plain.out), b = nlohmann::json::parse(recorded.out);
+  a.erase("timing"), b.erase("timing");  // wall-clock times of the core update
+  EXPECT_EQ(a, b) << "recording the trajectory changes the putt";
+  std::ifstream in(path);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "t,x,y,z,vx,vy,vz");
+  std::vector<std::array<double, 3>> rows;  // t, x, y
+  for (std::string line; std::getline(in, line);) {
+    std::array<double, 3> r{};
+    ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf", &r[0], &r[1], &r[2]), 3) << line;
+    rows.push_back(r);
+  }
+  // flat: tee at the origin; the duration counts from the first contact, as t does.
+  ASSERT_GT(rows.size(), 50u);
+  EXPECT_EQ(rows.front()[0], 0.0);
+  EXPECT_LT(std::hypot(rows.front()[1], rows.front()[2]), 0.01);
+  EXPECT_NEAR(rows.back()[0], a["duration"].get<double>(), 1e-9);
+  EXPECT_NEAR(rows.back()[1], a["rest_position"][0].get<double>(), 0.01);
+  for (std::size_t i = 1; i < rows.size(); ++i) ASSERT_GT(rows[i][0], rows[i - 1][0]) << i;
   std::filesystem::remove(path);
 }
 

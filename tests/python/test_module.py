@@ -59,6 +59,17 @@ def test_arm_putt_equals_cli_json_bit_for_bit(flat):
     ours.pop("timing"), theirs.pop("timing")  # wall-clock times of the core update
     assert ours == theirs
     assert ours["launch"]["speed"] > 0.5
+    # the ball's path, from the club's first contact (the default records every 10 ms)
+    recorded = flat.putt(angle, speed)
+    plain = as_json(flat.putt(angle, speed, record_interval=0.0).to_dict())
+    plain.pop("timing")
+    assert plain == theirs and flat.putt(angle, speed, record_interval=0.0).trajectory.shape == (0, 7)
+    traj = recorded.trajectory
+    assert traj.shape[1] == 7 and traj.shape[0] > 50
+    assert traj[0, 0] == 0.0 and np.all(np.diff(traj[:, 0]) > 0)
+    assert abs(traj[-1, 0] - theirs["duration"]) < 1e-9
+    assert np.hypot(traj[0, 1] - flat.field.tee[0], traj[0, 2] - flat.field.tee[1]) < 0.01
+    assert np.hypot(traj[-1, 1] - theirs["rest_position"][0], traj[-1, 2] - theirs["rest_position"][1]) < 0.01
 
 
 def test_putt_on_another_hole_and_field():
