@@ -10,6 +10,8 @@
 #include "core/rng.hpp"
 #include "selfteach/crkr.hpp"
 #include "selfteach/self_teach.hpp"
+#include "experiments/wire.hpp"
+#include "system/distributed.hpp"
 #include "system/parallel.hpp"
 
 namespace mg::experiments {
@@ -156,8 +158,9 @@ std::vector<CurveRun> learning_curves(const system::System& system, const field:
   options.validate();
   std::vector<CurveRun> runs(static_cast<std::size_t>(options.seeds));
   int done = 0;
-  system::parallel_for(
-      system, options.seeds, system::thread_count(options.threads),
+  // Runs are independent: over MPI processes too (the same bits as one process).
+  system::distributed_for(
+      system, runs, system::thread_count(options.threads),
       [&](int i, system::SystemData&) {
         CurveRun r = learner == CurveLearner::kSelfTeach    ? self_teach_run(system, region, i, options)
                      : learner == CurveLearner::kTeacherGpr ? teacher_run(system, region, i, options)

@@ -4,6 +4,7 @@
 /// field added to a struct without adding it here (x86-64 layouts).
 #include "experiments/evaluate.hpp"
 #include "experiments/launch_study.hpp"
+#include "experiments/learning_curves.hpp"
 #include "experiments/sweep.hpp"
 #include "system/wire.hpp"
 #include "teacher/teacher.hpp"
@@ -57,6 +58,15 @@ struct Wire<experiments::LaunchHit> {
     a(h.angle_index, h.hit_index, h.commanded_angle_deg, h.commanded_speed, h.seed, h.hit, h.ball_start,
       h.club_angle, h.club_speed, h.launch_angle, h.launch_speed, h.launch_error_deg, h.club_speed_error,
       h.launch_club_ratio, h.faulted, h.rest_time, h.failure);
+  }
+};
+
+template <>
+struct Wire<experiments::CurveRun> {
+  static_assert(sizeof(experiments::CurveRun) == 64, "CurveRun changed: update Wire<CurveRun>");
+  template <typename A>
+  static void fields(A& a, experiments::CurveRun& r) {
+    a(r.learner, r.run, r.putts, r.sunk, r.situations, r.examples);
   }
 };
 

@@ -1,4 +1,4 @@
-"""Scale-out: `mpirun -np N minigolf sweep|collect|evaluate ...` gives the same bits as one
+"""Scale-out: `mpirun -np N minigolf sweep|collect|evaluate|curves ...` gives the same bits as one
 process (system/distributed.hpp). Skipped where minigolf was built without MPI."""
 import os
 import subprocess
@@ -61,6 +61,13 @@ def test_evaluate_same_bits(tmp_path):
 def test_collect_same_bits(tmp_path):
     same_run(tmp_path, lambda out: ["collect", "--field", "flat", "--situations", "list:1.9,0.05;2.0,-0.05;2.1,0.0",
                                     "--max-full-putts", "12", "--threads", "1", "-o", out])
+
+
+def test_learning_curves_same_bits_for_2_and_3_ranks(tmp_path):
+    data, stdout = same_run(tmp_path, lambda out: ["curves", "--field", "flat", "--learner", "self-teach",
+                                                   "--seeds", "3", "--checkpoints", "4,8", "--situations", "6",
+                                                   "--threads", "1", "-o", out], ranks=(2, 3))
+    assert data.count(b"\n") == 1 + 3 * 2 and stdout.count("median") == 2
 
 
 def test_an_error_is_reported_once_with_the_exit_code(tmp_path):
