@@ -12,12 +12,12 @@
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "system/system.hpp"
-#include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
 #include "sim/putt.hpp"
+#include "viz/figure_data.hpp"
 
 namespace mg::cli {
 namespace {
@@ -42,13 +42,6 @@ nlohmann::json outcome_json(const std::string& field, std::array<double, 2> hole
 // Trajectory samples are 10 ms apart (the recorded outcome is the same bits as without).
 constexpr double kTrajectoryInterval = 0.01;
 
-void write_trajectory_csv(const std::string& path, const sim::PuttOutcome& out) {
-  std::vector<std::vector<double>> rows;
-  rows.reserve(out.trajectory.size());
-  for (const auto& s : out.trajectory) rows.push_back({s.t, s.x, s.y, s.z, s.vx, s.vy, s.vz});
-  write_file_atomic(path, format_csv({"t", "x", "y", "z", "vx", "vy", "vz"}, rows));
-}
-
 // The arm hits the ball: the module runs in lockstep simulator mode.
 void run_full_system_putt(const std::string& field_name, const std::string& hole_text,
                           double angle, double speed, double max_duration,
@@ -68,7 +61,7 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
   if (r.hit_refused) throw InputError("putt: the module refused the hit request");
   if (!r.hit) throw NumericalError("putt: the club did not reach the ball");
   const sim::PuttOutcome& out = r.outcome;
-  if (!trajectory_path.empty()) write_trajectory_csv(trajectory_path, out);
+  if (!trajectory_path.empty()) write_file_atomic(trajectory_path, viz::trajectory_csv(out));
   if (json) {
     nlohmann::json j = outcome_json(world.field().name, hole, angle, speed, out);
     j["club"] = {{"angle", r.club.angle}, {"speed", r.club.speed}};
@@ -140,7 +133,7 @@ void add_putt_command(CLI::App& app) {
     system::SystemData data(sys);
     const sim::PuttOutcome out = simulate_putt(world, data.ball.get(), hole, request);
 
-    if (!o->trajectory.empty()) write_trajectory_csv(o->trajectory, out);
+    if (!o->trajectory.empty()) write_file_atomic(o->trajectory, viz::trajectory_csv(out));
     if (o->json) {
       const nlohmann::json j = outcome_json(world.field().name, hole, o->angle, o->speed, out);
       fmt::print("{}\n", j.dump());

@@ -145,8 +145,8 @@ GmmFit fit_gmm_model(const Eigen::MatrixXd& joint, int num_inputs, const TrainOp
       stats::EmOptions em = opt.em;
       em.reg_covar = default_reg;
       Eigen::VectorXd e = cv_errors_or_inf(joint, num_inputs, k, folds, fold_of, seed, em);
-      if (mean_or_inf(e) < best_default * (1.0 - 1e-12)) {
-        best_default = mean_or_inf(e);
+      if (const double m = mean_or_inf(e); m < best_default * (1.0 - 1e-12)) {
+        best_default = m;
         err_default = std::move(e);
         k_default = k;
       }
@@ -155,8 +155,8 @@ GmmFit fit_gmm_model(const Eigen::MatrixXd& joint, int num_inputs, const TrainOp
         if (*it == default_reg) continue;
         em.reg_covar = *it;
         Eigen::VectorXd eo = cv_errors_or_inf(joint, num_inputs, k, folds, fold_of, seed, em);
-        if (mean_or_inf(eo) < best_other * (1.0 - 1e-2)) {
-          best_other = mean_or_inf(eo);
+        if (const double m = mean_or_inf(eo); m < best_other * (1.0 - 1e-2)) {
+          best_other = m;
           err_other = std::move(eo);
           k_other = k;
           reg_other = *it;
@@ -166,7 +166,7 @@ GmmFit fit_gmm_model(const Eigen::MatrixXd& joint, int num_inputs, const TrainOp
     if (!std::isfinite(best_default) && !std::isfinite(best_other))
       throw NumericalError(fmt::format("GMM fit: every cross-validation fit failed (K in {}..{}, reg_covar in {}..{})",
                                        ks.front(), ks.back(), regs.front(), regs.back()));
-    if (std::isfinite(best_other) && measurably_lower(err_other, err_default, kRegSwitchGain)) {
+    if (measurably_lower(err_other, err_default, kRegSwitchGain)) {  // false when no other value fitted
       best_k = k_other;
       best_reg = reg_other;
     } else {

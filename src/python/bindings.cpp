@@ -481,7 +481,8 @@ PYBIND11_MODULE(_minigolf, m) {
            "One putt. Arm (default): hitting angle `angle` [rad] and club speed `speed` [m/s] within the safe "
            "envelope. ball_only: the ball launched from the tee at `angle` [rad], `speed` [m/s]. hole: (x, y) "
            "[m] (default: the field's). max_duration [s]; record_interval: trajectory spacing [s] (0: none; "
-           "time from the launch, with the arm from the club's first contact). data: a SystemData of this System (default: a fresh one). Releases the GIL.")
+           "time from the launch, with the arm from the club's first contact). data: a SystemData of this "
+           "System (default: a fresh one). Releases the GIL.")
       .def("teach",
            [](const system::System& s, std::array<double, 2> hole, const std::string& strategy, int max_full_putts,
               int max_ball_putts, double margin_angle, double margin_speed, PySystemData* data) {
