@@ -87,4 +87,14 @@ std::vector<std::string> parse_names(const std::string& what, const std::string&
   return names;
 }
 
+plant::Plant load_plant_arg(const std::string& path) {
+  if (path.empty()) return {};
+  return plant::load_plant(path);
+}
+
+nlohmann::json plant_json(const plant::Plant& plant) {
+  if (plant.source.empty()) return nullptr;
+  return {{"path", plant.source}, {"hash", plant.hash}};
+}
+
 }  // namespace mg::cli

@@ -6,6 +6,9 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "plant/plant.hpp"
 
 namespace mg::cli {
 
@@ -31,5 +34,13 @@ std::array<double, N> parse_vector(const std::string& what, const std::string& t
 
 /// Parses "a,b,c" into names (no empty entries); throws `InputError` naming `what`.
 std::vector<std::string> parse_names(const std::string& what, const std::string& text);
+
+/// The plant of `--plant PATH` (empty path: none, the identity). Throws InputError/IoError.
+plant::Plant load_plant_arg(const std::string& path);
+/// `plant` as reported in --json: null without a file, else {"path", "hash"}.
+nlohmann::json plant_json(const plant::Plant& plant);
+/// The help text of --plant.
+inline constexpr const char* kPlantHelp =
+    "Plant file: the world as it really is where it differs from the robot's model (docs/reality.md)";
 
 }  // namespace mg::cli

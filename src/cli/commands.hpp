@@ -14,5 +14,7 @@ void add_console_command(CLI::App& app);    // console
 void add_play_commands(CLI::App& app);      // sweep | collect | evaluate
 void add_viz_commands(CLI::App& app);       // view | render
 void add_plot_commands(CLI::App& app);      // plot ds | strength | field | model
+void add_plant_commands(CLI::App& app);     // plant random | show
+void add_adaptation_command(CLI::App& app);  // study adaptation (after add_study_commands)
 
 }  // namespace mg::cli

@@ -31,6 +31,7 @@ void add_console_command(CLI::App& app) {
     bool vision_sim = false;
     bool echo = false;
     std::uint64_t seed = 1;
+    std::string plant;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
@@ -46,6 +47,8 @@ void add_console_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_flag("--echo", o->echo, "Print every command before its answer");
   cmd->add_option("--seed", o->seed, "Seed of the vision simulator's noise")->check(unsigned_integer())->capture_default_str();
+  cmd->add_option("--plant", o->plant,
+                  "Plant file: the lane and the arm's friction and club as they really are (docs/reality.md)");
   cmd->callback([o] {
     control::ModuleConfig config =
         o->config.empty() ? control::ModuleConfig{} : control::load_module_config(o->config);
@@ -62,6 +65,7 @@ void add_console_command(CLI::App& app) {
     options.vision_sim = o->vision_sim;
     options.echo = o->echo;
     options.seed = o->seed;
+    options.plant = load_plant_arg(o->plant);
     // Ctrl-C (or kill, or a closed terminal) ends the session as `quit` does: the recording is kept.
     defer_termination_signals();
     {

@@ -27,6 +27,8 @@ int run(int argc, char** argv) {
   mg::cli::add_play_commands(app);
   mg::cli::add_viz_commands(app);
   mg::cli::add_plot_commands(app);
+  mg::cli::add_plant_commands(app);
+  mg::cli::add_adaptation_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ConversionError& e) {  // a malformed number: bad input like any other

@@ -38,6 +38,7 @@ struct SystemArgs {
   std::string field = "flat";
   std::string config;
   std::string hitting_model;
+  std::string plant;
   int threads = 0;
 };
 
@@ -45,6 +46,7 @@ void add_system_options(CLI::App* cmd, SystemArgs& a) {
   cmd->add_option("--field", a.field, "Shipped field name or path to a field file")->capture_default_str();
   cmd->add_option("--config", a.config, "Module config YAML");
   cmd->add_option("--hitting-model", a.hitting_model, "Hitting DS model file (default: the shipped one)");
+  cmd->add_option("--plant", a.plant, kPlantHelp);
   cmd->add_option("--threads", a.threads, "Threads (0: all cores; results do not depend on it)")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
@@ -100,7 +102,7 @@ void add_sweep(CLI::App& app) {
     o.speeds = parse_range("--speeds", a->speeds);
     o.ball_only = a->ball_only;
     o.threads = a->sys.threads;
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
     if (!a->ball_only)
       for (double angle : o.angles)
         for (double speed : o.speeds) sys.check_request(angle, speed, "sweep");
@@ -150,7 +152,7 @@ void add_collect(CLI::App& app) {
   cmd->add_flag("--resume", a->resume, "Continue an interrupted collection in the output file");
   cmd->add_option("-o,--output", a->out, "Data set CSV to write")->required();
   cmd->callback([a] {
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
     const field::Situations region = region_of(sys.field(), a->situations);
     experiments::CollectOptions o;
     o.teacher = teacher_options(region, a->strategy);
@@ -184,7 +186,7 @@ void add_collect(CLI::App& app) {
 void add_evaluate(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string model, situations_spec, rows, strategy, save_model;
+    std::string model, situations_spec, rows, strategy, save_model, learn_mode = "residual";
     int situations = 30;
     std::uint64_t seed = 1;
     bool json = false, no_oracle = false, learn = false;
@@ -203,7 +205,8 @@ void add_evaluate(CLI::App& app) {
   cmd->add_flag("--no-oracle", a->no_oracle, "Skip the oracle ceiling (the teacher on every situation)");
   cmd->add_flag("--json", a->json, "Print one JSON object");
   cmd->add_option("-o,--output", a->rows, "Also write one CSV row per situation here");
-  cmd->add_flag("--learn", a->learn, "Keep learning while playing: each putt's hindsight labels join the GPR model (implies --no-oracle)");
+  cmd->add_flag("--learn", a->learn, "Keep learning while playing: each putt's hindsight labels correct the model (implies --no-oracle)");
+  cmd->add_option("--learn-mode", a->learn_mode, "With --learn: residual (the model is a prior, a residual GP learns) | append (labels join a GPR model's data)")->capture_default_str();
   cmd->add_option("--save-model", a->save_model, "With --learn: write the model as it ends up here");
   cmd->add_option("--perception-noise", a->perception_noise, "Std [m] of the perceived hole and ball positions, per axis");
   cmd->add_option("--torque-noise", a->torque_noise, "Joint torque noise std, fraction of the limits");
@@ -211,7 +214,7 @@ void add_evaluate(CLI::App& app) {
     if (!a->save_model.empty() && !a->learn) throw InputError("--save-model: only with --learn");
     const learning::Model model = learning::load_model(a->model);
     experiments::check_playable_model(model, a->model);
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
     const field::Situations region = region_of(sys.field(), a->situations_spec);
     experiments::EvaluateOptions o;
     o.situations = a->situations;
@@ -222,6 +225,9 @@ void add_evaluate(CLI::App& app) {
     o.perception_noise = a->perception_noise;
     o.torque_noise = a->torque_noise;
     if (a->learn) o.oracle = false;
+    if (a->learn_mode == "residual") o.learn = experiments::LearnMode::kResidual;
+    else if (a->learn_mode == "append") o.learn = experiments::LearnMode::kAppend;
+    else throw InputError(fmt::format("--learn-mode: expected residual or append, got '{}'", a->learn_mode));
     Progress bar("evaluate", a->situations);
     experiments::Evaluation e;
     std::vector<int> labels_added;
@@ -259,6 +265,7 @@ void add_evaluate(CLI::App& app) {
           {"ci95", e.ci95},
           {"oracle_ceiling", o.oracle ? nlohmann::json(e.oracle_ceiling) : nlohmann::json()},
           {"oracle_found", o.oracle ? nlohmann::json(e.oracle_found) : nlohmann::json()},
+          {"plant", plant_json(sys.plant())},
           {"learn", a->learn},
           {"labels_added", a->learn ? nlohmann::json(labels_added) : nlohmann::json()},
           {"rows", rows}};
@@ -280,7 +287,7 @@ void add_evaluate(CLI::App& app) {
 void add_self_teach(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string situations, strategy, log, out;
+    std::string situations, strategy, log, out, prior;
     int budget = 0;
     int batch = 1;
     double arrival = 0.0;
@@ -299,15 +306,21 @@ void add_self_teach(CLI::App& app) {
   cmd->add_option("--arrival-speed", a->arrival, "Ball speed [m/s] to reach the hole with (default: the strategy's)")
       ->check(finite_number(0.0, 2.0));
   cmd->add_option("-o,--output", a->out, "Learner model file to write (as minigolf train)")->required();
+  cmd->add_option("--prior", a->prior, "Start from this learner model (learned elsewhere; the result is a residual over it)");
   cmd->callback([a] {
     selfteach::SelfTeachOptions o;
+    if (!a->prior.empty()) {
+      auto prior = std::make_shared<learning::Model>(learning::load_model(a->prior));
+      experiments::check_playable_model(*prior, a->prior);
+      o.prior = std::move(prior);
+    }
     o.budget = a->budget;
     o.batch = a->batch;
     o.seed = a->seed;
     o.threads = a->sys.threads;
     o.arrival_speed = a->arrival;
     o.validate();
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
     field::Situations region = region_of(sys.field(), a->situations);
     if (!a->strategy.empty()) region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));
     Progress bar("self-teach", o.budget);
@@ -324,8 +337,8 @@ void add_self_teach(CLI::App& app) {
     }
     if (!r.trained)
       throw InputError(fmt::format("self-teach: field '{}': {} hindsight label(s) in the region after {} putts (need "
-                                   "2): its holes are out of the robot's reach{}",
-                                   sys.field().name, r.labels.size(), r.putts.size(),
+                                   "{}): no putt's path crossed the region{}",
+                                   sys.field().name, r.labels.size(), r.putts.size(), o.prior ? 1 : 2,
                                    a->log.empty() ? "" : fmt::format(" (the putts are in {})", a->log)));
     learning::save_model(r.model, a->out);
     fmt::print("self-taught {} in {} full-system putts ({} sank while learning): {} hindsight labels{}; labels at "
@@ -340,13 +353,14 @@ void add_self_teach(CLI::App& app) {
 void add_curves(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string learner = "self-teach", checkpoints = "10,25,50,100,150", situations_spec, out;
+    std::string learner = "self-teach", checkpoints = "10,25,50,100,150", situations_spec, out, prior;
     experiments::CurveOptions o;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("curves", "Learning curves: test success against full-system putts spent, per seed");
   add_system_options(cmd, a->sys);
-  cmd->add_option("--learner", a->learner, "self-teach | teacher-gpr | crkr")->capture_default_str();
+  cmd->add_option("--learner", a->learner, "self-teach | teacher-gpr | crkr | adapt | adapt-play | append (the last three start from --prior)")->capture_default_str();
+  cmd->add_option("--prior", a->prior, "Learner model to adapt (adapt, adapt-play, append), e.g. trained in the nominal simulator");
   cmd->add_option("--checkpoints", a->checkpoints, "Putt counts, increasing, comma-separated")->capture_default_str();
   cmd->add_option("--seeds", a->o.seeds, "Runs")->capture_default_str();
   cmd->add_option("--situations", a->o.situations, "Test situations per checkpoint")->capture_default_str();
@@ -355,17 +369,23 @@ void add_curves(CLI::App& app) {
   cmd->add_option("--region", a->situations_spec, "Region instead of the field's (as collect --situations)");
   cmd->add_option("-o,--output", a->out, "CSV to write")->required();
   cmd->callback([a] {
-    experiments::CurveLearner learner;
-    if (a->learner == "self-teach") learner = experiments::CurveLearner::kSelfTeach;
-    else if (a->learner == "teacher-gpr") learner = experiments::CurveLearner::kTeacherGpr;
-    else if (a->learner == "crkr") learner = experiments::CurveLearner::kCrkr;
-    else throw InputError(fmt::format("--learner: expected self-teach, teacher-gpr or crkr, got '{}'", a->learner));
+    const experiments::CurveLearner learner = experiments::parse_curve_learner(a->learner);
+    if (experiments::needs_prior(learner) != !a->prior.empty())
+      throw InputError(a->prior.empty() ? fmt::format("--learner {}: needs --prior MODEL", a->learner)
+                                        : fmt::format("--prior: only with --learner adapt, adapt-play or append"));
+    if (!a->prior.empty()) {
+      auto prior = std::make_shared<learning::Model>(learning::load_model(a->prior));
+      experiments::check_playable_model(*prior, a->prior);
+      a->o.prior = std::move(prior);
+    }
     a->o.checkpoints.clear();
     for (const auto& c : parse_names("--checkpoints", a->checkpoints))
       a->o.checkpoints.push_back(static_cast<int>(std::min<std::uint64_t>(parse_unsigned("--checkpoints", c), 1000000)));
+    if (a->o.prior && learner == experiments::CurveLearner::kAppend && (a->o.prior->method != learning::Method::kGpr || a->o.prior->prior))
+      throw InputError(fmt::format("--learner append: needs a plain GPR prior ({} keeps no data to append to)", a->prior));
     a->o.threads = a->sys.threads;
     a->o.validate();
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
     const field::Situations region = region_of(sys.field(), a->situations_spec);
     a->o.teacher = teacher_options(region, "");
     Progress bar("curves", a->o.seeds);
@@ -395,6 +415,9 @@ void add_reproduce(CLI::App& app) {
   cmd->add_option("--fields", *fields, "Fields, comma-separated")->capture_default_str();
   cmd->add_option("--config", o->config, "Module config YAML");
   cmd->add_flag("!--no-plots", o->plots, "Skip the matplotlib figures");
+  cmd->add_flag("!--no-real-robot", o->real_robot, "Skip the real-robot rows (a plant standing in for the real WAM)");
+  cmd->add_option("--real-robot-plant", o->real_robot_plant, "The plant standing in for the real WAM (default: data/plants/real-wam.yaml)");
+  cmd->add_option("--plant", o->plant, kPlantHelp);
   cmd->callback([o, out, datasets, fields] {
     o->out = *out;
     o->datasets = *datasets;

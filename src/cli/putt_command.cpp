@@ -46,8 +46,8 @@ constexpr double kTrajectoryInterval = 0.01;
 void run_full_system_putt(const std::string& field_name, const std::string& hole_text,
                           double angle, double speed, double max_duration,
                           const std::string& model_path, const std::string& config_path,
-                          bool json, const std::string& trajectory_path) {
-  const system::System sys(system::load_config(config_path, field_name, model_path));
+                          const std::string& plant_path, bool json, const std::string& trajectory_path) {
+  const system::System sys(system::load_config(config_path, field_name, model_path), load_plant_arg(plant_path));
   sys.check_request(angle, speed, "putt");
   if (!std::isfinite(max_duration) || max_duration <= 0.0)
     throw InputError(fmt::format("putt: --max-duration: expected > 0 s, got {}", max_duration));
@@ -64,6 +64,7 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
   if (!trajectory_path.empty()) write_file_atomic(trajectory_path, viz::trajectory_csv(out));
   if (json) {
     nlohmann::json j = outcome_json(world.field().name, hole, angle, speed, out);
+    j["plant"] = plant_json(sys.plant());
     j["club"] = {{"angle", r.club.angle}, {"speed", r.club.speed}};
     j["launch"] = {{"angle", r.launch.angle}, {"speed", r.launch.speed}};
     j["timing"] = {{"core_update_p99_us", r.timing.core_update_p99_us},
@@ -95,6 +96,7 @@ void add_putt_command(CLI::App& app) {
     std::string trajectory;
     std::string hitting_model;
     std::string config;
+    std::string plant;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("putt", "Simulate one putt and report the outcome");
@@ -114,10 +116,11 @@ void add_putt_command(CLI::App& app) {
                   "Hitting DS model file (default: data/models/hitting-default.json)");
   cmd->add_option("--config", o->config,
                   "Module config YAML (gains, envelope, ...; see notes/control.md)");
+  cmd->add_option("--plant", o->plant, kPlantHelp);
   cmd->callback([o] {
     if (!o->ball_only) {
       run_full_system_putt(o->field, o->hole, o->angle, o->speed, o->max_duration,
-                           o->hitting_model, o->config, o->json, o->trajectory);
+                           o->hitting_model, o->config, o->plant, o->json, o->trajectory);
       return;
     }
     sim::PuttRequest request;
@@ -126,16 +129,19 @@ void add_putt_command(CLI::App& app) {
     request.max_duration = o->max_duration;
     request.record_interval = o->trajectory.empty() ? 0.0 : kTrajectoryInterval;
     request.validate();
-    const system::System sys(system::load_config(o->config, o->field, o->hitting_model));
+    const system::System sys(system::load_config(o->config, o->field, o->hitting_model), load_plant_arg(o->plant));
     const sim::World& world = sys.ball_world();
-    const auto hole = o->hole.empty() ? world.field().hole.position : parse_vector<2>("--hole", o->hole);
-    field::check_hole_position(world.field(), hole);
+    const auto hole = o->hole.empty() ? sys.field().hole.position : parse_vector<2>("--hole", o->hole);
+    field::check_hole_position(sys.field(), hole);
+    const auto real = system::real_hole(sys, hole);
+    field::check_hole_position(world.field(), real);
     system::SystemData data(sys);
-    const sim::PuttOutcome out = simulate_putt(world, data.ball.get(), hole, request);
+    const sim::PuttOutcome out = simulate_putt(world, data.ball.get(), real, request);
 
     if (!o->trajectory.empty()) write_file_atomic(o->trajectory, viz::trajectory_csv(out));
     if (o->json) {
-      const nlohmann::json j = outcome_json(world.field().name, hole, o->angle, o->speed, out);
+      nlohmann::json j = outcome_json(world.field().name, hole, o->angle, o->speed, out);
+      j["plant"] = plant_json(sys.plant());
       fmt::print("{}\n", j.dump());
     } else {
       fmt::print("{} on {}: angle {:.4f} rad, speed {:.3f} m/s -> {} after {:.2f} s; rest ({:.3f}, "

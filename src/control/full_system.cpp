@@ -371,6 +371,22 @@ sim::BallState settled_ball(const sim::World& settle_world, mjData* sd,
   return s;
 }
 
+/// Turns the ball's motion about the vertical by `angle` [rad]: its linear velocity, and its
+/// orientation (so its body-frame spin turns with it).
+void turn_ball(const sim::World& world, mjData* d, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  mjtNum* v = d->qvel + world.ids().ball_dof;
+  const double vx = v[0], vy = v[1];
+  v[0] = c * vx - s * vy;
+  v[1] = s * vx + c * vy;
+  mjtNum* q = d->qpos + world.ids().ball_qpos + 3;
+  const mjtNum turn[4] = {std::cos(0.5 * angle), 0.0, 0.0, std::sin(0.5 * angle)};
+  mjtNum turned[4];
+  mju_mulQuat(turned, turn, q);
+  mju_normalize4(turned);
+  for (int i = 0; i < 4; ++i) q[i] = turned[i];
+}
+
 }  // namespace
 
 FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
@@ -424,6 +440,12 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   r.ball_start = ball_start;
   r.min_position_margin = 1e9;
   LockstepRunner run(world, model, d);
+  // The plant's vision: late and off by this putt's error.
+  const bool plant_vision = options.perception_latency > 0.0 || options.perceived_ball_offset[0] != 0.0 ||
+                            options.perceived_ball_offset[1] != 0.0;
+  perception::SimulatorPerception truth(world, d);
+  perception::DelayedPerception delayed(truth, options.perception_latency, options.perceived_ball_offset);
+  if (plant_vision) run.set_perception(&delayed);
   TorqueNoise torque_noise(model, world.model(), options);
   double t_module_hit = -1.0;  // [s] state the module measured when it saw the hit (-1: not yet)
   const auto step = [&] {
@@ -467,7 +489,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   }
   // Approach cache (kApproach, no noise): a hit restores the state at the hit request.
   const bool cacheable = options.rest_start == RestStart::kApproach && valid_angle &&
-                         !(options.torque_noise > 0.0) && local == nullptr;
+                         !(options.torque_noise > 0.0) && !plant_vision && local == nullptr;
   std::vector<double> fingerprint;
   PuttScratch::Impl::AtRest* cached = nullptr;
   if (cacheable) {
@@ -518,8 +540,11 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     return r;
   }
 
-  // Hit.
-  const bool request_valid = request_hit(model, run.module(), angle, speed);
+  // Hit (the arm of a plant reaches club_speed_scale of what it is asked for).
+  const double arm_speed = options.club_speed_scale == 1.0
+                               ? speed
+                               : std::clamp(speed * options.club_speed_scale, cfg.speed_min, cfg.speed_max);
+  const bool request_valid = request_hit(model, run.module(), angle, arm_speed);
   const long hit_steps = std::lround(options.hit_timeout / dt);
   double t_request = d->time;
   bool contact = false;
@@ -551,7 +576,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
                   run.steps() % 2 == 0;
         }
         if (again) {
-          request_hit(model, run.module(), angle, speed);
+          request_hit(model, run.module(), angle, arm_speed);
           r.rest_time = t_request = d->time;
           k = -1;
           continue;
@@ -599,10 +624,15 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     trajectory.push_back({data->time - t_contact, q[0], q[1], q[2], v[0], v[1], v[2]});
   };
   if (record_every) record(world, d);
+  bool launch_turned = options.launch_angle_bias == 0.0;
   long k = 1;
   for (; k <= max_steps && !decided; ++k) {
     step();
     track_ratios(model, d, run.module(), r);
+    if (!launch_turned && !r.touching_ball) {
+      turn_ball(world, d, options.launch_angle_bias);
+      launch_turned = true;
+    }
     decided = tracker.update(d);
     if (record_every && (k % record_every == 0 || decided)) record(world, d);
     if (k == launch_step) {

@@ -130,6 +130,19 @@ struct FullPuttOptions {
   double placement_noise = 0.0;
   /// Seed of the noise (mg::Rng; placement and torque use derive_seed(seed, 0) and (seed, 1)).
   std::uint64_t seed = 0;
+
+  // --- The plant's arm and vision (plant/plant.hpp; set by system::arm_putt). Identity values:
+  // the run is unchanged, bit for bit.
+  /// [rad] The ball's horizontal velocity is turned by this the first step after the club has
+  /// left it (a club face or calibration error the robot does not know of).
+  double launch_angle_bias = 0.0;
+  /// The module is asked for this times `speed` (the arm reaches this fraction of the commanded
+  /// club speed), clamped to the envelope [speed_min, speed_max].
+  double club_speed_scale = 1.0;
+  /// [s] The module perceives the ball and hole this old (perception::DelayedPerception).
+  double perception_latency = 0.0;
+  /// [m] The module perceives the ball moved by this for the whole putt (the vision's error).
+  std::array<double, 2> perceived_ball_offset{0.0, 0.0};
 };
 
 /// Angle [rad] (atan2 of the horizontal components) and speed [m/s] of a velocity.

@@ -1,5 +1,6 @@
 #include "experiments/evaluate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -10,6 +11,8 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "selfteach/hindsight.hpp"
+#include "selfteach/planner.hpp"
+#include "selfteach/self_teach.hpp"
 #include "stats/gpr.hpp"
 #include "system/parallel.hpp"
 #include "experiments/wire.hpp"
@@ -123,10 +126,8 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
                         v >= c.speed_min && v <= c.speed_max;
         if (r.in_envelope) {
           control::FullPuttOptions po;
-          if (options.torque_noise > 0.0) {
-            po.torque_noise = options.torque_noise;
-            po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-          }
+          po.torque_noise = options.torque_noise;  // (a plant may add its own: the seed is set)
+          po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
           const control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
           r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
           r.outcome = p.outcome;
@@ -152,13 +153,87 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
   return e;
 }
 
-LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
+namespace {
+
+LearningEvaluation evaluate_appending(const system::System& system, const learning::Model& model,
+                                      const field::Situations& region, const EvaluateOptions& options,
+                                      const std::function<void(int, int)>& progress);
+
+/// The residual way: prior = the model, a residual GP on the hindsight labels (selfteach/planner.hpp).
+LearningEvaluation evaluate_residual(const system::System& system, const learning::Model& model,
                                      const field::Situations& region, const EvaluateOptions& options,
                                      const std::function<void(int, int)>& progress) {
+  const auto& field = system.field();
+  selfteach::HindsightRules rules;
+  rules.learn_speed = region.learn_speed;
+  rules.arrival_speed = teacher::arrival_speed(field, options.teacher.strategy);
+  const double margin = selfteach::label_margin(region);
+  const double hole_radius = 0.5 * field.hole.diameter;
+  const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
+  const auto holes = region.sample(options.situations, options.seed);
+  selfteach::Planner planner(system, region, rules.arrival_speed, options.seed,
+                             std::make_shared<const learning::Model>(model));
+
+  LearningEvaluation out;
+  out.learned = model;
+  Evaluation& e = out.evaluation;
+  e.rows.resize(holes.size());
+  system::SystemData data(system);
+  const auto& c = system.config();
+  const int n = static_cast<int>(holes.size());
+  std::vector<selfteach::PuttRecord> putts;
+  std::vector<selfteach::Label> labels;
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    SituationResult& r = e.rows[k];
+    r.hole = holes[k];
+    const auto plan = planner.plan(r.hole);
+    r.predicted = predict_hits(model, field, {r.hole})[0];  // the prior's std
+    r.predicted.angle = plan[0];
+    r.predicted.speed = plan[1];
+    const double a = r.predicted.angle, v = r.predicted.speed;
+    r.in_envelope = std::isfinite(a) && std::isfinite(v) && a >= c.angle_min && a <= c.angle_max &&
+                    v >= c.speed_min && v <= c.speed_max;
+    int added = 0;
+    if (r.in_envelope) {
+      control::FullPuttOptions po;
+      po.record_interval = 0.005;
+      po.torque_noise = options.torque_noise;
+      po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
+      control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
+      r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
+      putts.push_back(selfteach::record_putt(r.hole, a, v, p));
+      if (p.hit) {
+        const auto ls = selfteach::hindsight_labels(p.outcome.trajectory, r.hole, hole_radius, rolling_decel, region,
+                                                    margin, a, v, static_cast<int>(putts.size()) - 1, rules);
+        added = static_cast<int>(ls.size());
+        labels.insert(labels.end(), ls.begin(), ls.end());
+      }
+      planner.update(putts, labels);
+      p.outcome.trajectory.clear();
+      r.outcome = std::move(p.outcome);
+    }
+    out.labels_added.push_back(added);
+    if (std::find(options.learn_checkpoints.begin(), options.learn_checkpoints.end(), i + 1) !=
+        options.learn_checkpoints.end())
+      out.checkpoint_models.emplace_back(i + 1, planner.residual_model());
+    if (progress) progress(i + 1, n);
+  }
+  out.learned = planner.residual_model();
+  for (const auto& r : e.rows) e.sunk += r.sunk;
+  e.success_ratio = static_cast<double>(e.sunk) / n;
+  e.ci95 = wilson_interval(e.sunk, n);
+  e.oracle_ceiling = std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+LearningEvaluation evaluate_appending(const system::System& system, const learning::Model& model,
+                                      const field::Situations& region, const EvaluateOptions& options,
+                                      const std::function<void(int, int)>& progress) {
   check_playable_model(model, "model");
-  if (model.method != learning::Method::kGpr)
-    throw InputError(fmt::format("--learn: needs a GPR model (a {} model keeps no training data to add to)",
-                                 learning::method_name(model.method)));
+  if (model.method != learning::Method::kGpr || model.prior)
+    throw InputError(fmt::format("--learn append: needs a plain GPR model (a {} model keeps no training data to add to)",
+                                 model.prior ? "residual" : learning::method_name(model.method)));
   options.validate();
   if (options.perception_noise > 0.0 || options.oracle)
     throw InputError("--learn: plays without perception noise and without the oracle");
@@ -194,10 +269,8 @@ LearningEvaluation evaluate_learning(const system::System& system, const learnin
     if (r.in_envelope) {
       control::FullPuttOptions po;
       po.record_interval = 0.005;
-      if (options.torque_noise > 0.0) {
-        po.torque_noise = options.torque_noise;
-        po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-      }
+      po.torque_noise = options.torque_noise;
+      po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
       control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       if (p.hit) {
@@ -232,6 +305,9 @@ LearningEvaluation evaluate_learning(const system::System& system, const learnin
       r.outcome = std::move(p.outcome);
     }
     out.labels_added.push_back(added);
+    if (std::find(options.learn_checkpoints.begin(), options.learn_checkpoints.end(), i + 1) !=
+        options.learn_checkpoints.end())
+      out.checkpoint_models.emplace_back(i + 1, out.learned);
     if (progress) progress(i + 1, n);
   }
   for (const auto& r : e.rows) e.sunk += r.sunk;
@@ -239,6 +315,19 @@ LearningEvaluation evaluate_learning(const system::System& system, const learnin
   e.ci95 = wilson_interval(e.sunk, n);
   e.oracle_ceiling = std::numeric_limits<double>::quiet_NaN();
   return out;
+}
+
+}  // namespace
+
+LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
+                                     const field::Situations& region, const EvaluateOptions& options,
+                                     const std::function<void(int, int)>& progress) {
+  check_playable_model(model, "model");
+  options.validate();
+  if (options.perception_noise > 0.0 || options.oracle)
+    throw InputError("--learn: plays without perception noise and without the oracle");
+  return options.learn == LearnMode::kAppend ? evaluate_appending(system, model, region, options, progress)
+                                             : evaluate_residual(system, model, region, options, progress);
 }
 
 std::string evaluation_csv(const Evaluation& e, const field::Field& field) {

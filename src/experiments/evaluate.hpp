@@ -31,6 +31,12 @@ std::vector<Prediction> predict_hits(const learning::Model& model, const field::
 /// Throws InputError unless the model can be played on a field (see predict_hits).
 void check_playable_model(const learning::Model& model, const std::string& source);
 
+/// How `evaluate --learn` learns while playing.
+enum class LearnMode {
+  kResidual,  ///< the model is a prior; a residual GP over it learns from the labels (adaptation)
+  kAppend,    ///< the labels join the GPR model's own data (the thesis's suggestion; a baseline)
+};
+
 struct EvaluateOptions {
   int situations = 30;
   std::uint64_t seed = 1;
@@ -44,6 +50,10 @@ struct EvaluateOptions {
   /// Execution noise: joint-torque disturbance std as a fraction of the limits (launch study).
   double torque_noise = 0.0;
   std::uint64_t noise_seed = 1;        ///< situation i draws from derive_seed(noise_seed, i)
+  /// evaluate_learning: how new labels change the model.
+  LearnMode learn = LearnMode::kResidual;
+  /// evaluate_learning: situation counts after which the model as it stands is also kept.
+  std::vector<int> learn_checkpoints;
   void validate() const;               ///< InputError naming the field
 };
 
@@ -81,16 +91,20 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
                           const field::Situations& region, const EvaluateOptions& options,
                           const std::function<void(int, int)>& progress = {});
 
-/// Incremental improvement (thesis chapter 7): the situations are played one after another and
-/// after each putt its hindsight labels (selfteach/hindsight.hpp; the arrival speed of the
-/// region's strategy) join the GPR model's data (hyperparameters re-tuned by marginal likelihood
-/// whenever the data has grown by a third, else kept), so the next situation is played with everything seen so far. Only GPR models keep
-/// their data: others are an InputError. `learned` gets the final model. One thread: each putt
-/// depends on the ones before; deterministic.
+/// Learning while playing (thesis chapter 7; adaptation, docs/reality.md): the situations are
+/// played one after another and each putt's hindsight labels (selfteach/hindsight.hpp; the
+/// arrival speed of the region's strategy) change the model before the next one:
+///   kResidual  the model is the prior of a selfteach::Planner: a residual GP on (label - prior),
+///              pseudo-labels for putts that label nothing near their target; `learned` is the
+///              residual model over `model` (any method);
+///   kAppend    the labels join a GPR model's data (hyperparameters re-tuned by marginal
+///              likelihood whenever the data has grown by a third); GPR models only.
+/// One thread: each putt depends on the ones before; deterministic.
 struct LearningEvaluation {
   Evaluation evaluation;          ///< rows in play order
   std::vector<int> labels_added;  ///< per situation
   learning::Model learned;
+  std::vector<std::pair<int, learning::Model>> checkpoint_models;  ///< (situations played, model)
 };
 LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
                                      const field::Situations& region, const EvaluateOptions& options,

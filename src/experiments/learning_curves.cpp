@@ -21,14 +21,29 @@ std::string to_string(CurveLearner l) {
     case CurveLearner::kSelfTeach: return "self-teach";
     case CurveLearner::kTeacherGpr: return "teacher-gpr";
     case CurveLearner::kCrkr: return "crkr";
+    case CurveLearner::kAdapt: return "adapt";
+    case CurveLearner::kAdaptPlay: return "adapt-play";
+    case CurveLearner::kAppend: return "append";
   }
   return "?";
+}
+
+CurveLearner parse_curve_learner(const std::string& name) {
+  for (CurveLearner l : {CurveLearner::kSelfTeach, CurveLearner::kTeacherGpr, CurveLearner::kCrkr, CurveLearner::kAdapt,
+                         CurveLearner::kAdaptPlay, CurveLearner::kAppend})
+    if (to_string(l) == name) return l;
+  throw InputError(fmt::format("--learner: expected self-teach, teacher-gpr, crkr, adapt, adapt-play or append, got '{}'", name));
+}
+
+bool needs_prior(CurveLearner l) {
+  return l == CurveLearner::kAdapt || l == CurveLearner::kAdaptPlay || l == CurveLearner::kAppend;
 }
 
 void CurveOptions::validate() const {
   if (checkpoints.empty()) throw InputError("learning curves: no checkpoints");
   for (int c : checkpoints)
-    if (c < 1 || c > 100000) throw InputError(fmt::format("learning curves: checkpoint {}: expected 1..100000", c));
+    if (c < 0 || c > 100000) throw InputError(fmt::format("learning curves: checkpoint {}: expected 0..100000", c));
+  if (checkpoints.back() < 1) throw InputError("learning curves: the last checkpoint must be >= 1 putt");
   if (!std::is_sorted(checkpoints.begin(), checkpoints.end()))
     throw InputError("learning curves: checkpoints must be increasing");
   if (seeds < 1 || seeds > 1000) throw InputError(fmt::format("learning curves: seeds: expected 1..1000, got {}", seeds));
@@ -52,23 +67,53 @@ int play_model(const system::System& sys, const field::Situations& region, const
   return evaluate_model(sys, m, region, test_options(o)).sunk;
 }
 
-CurveRun self_teach_run(const system::System& sys, const field::Situations& region, int run,
-                        const CurveOptions& o) {
-  selfteach::SelfTeachOptions so;
-  so.budget = o.checkpoints.back();
-  so.seed = derive_seed(o.seed, static_cast<std::uint64_t>(run));
-  so.threads = 1;
-  so.checkpoints = o.checkpoints;
-  const auto r = selfteach::self_teach(sys, region, so);
+/// Checkpoints of at least one putt (the learners' own checkpoints).
+std::vector<int> positive_checkpoints(const CurveOptions& o) {
+  std::vector<int> out;
+  for (int k : o.checkpoints)
+    if (k > 0) out.push_back(k);
+  return out;
+}
+
+/// The run's curve from the models at its checkpoints; checkpoint 0 plays the prior (if any).
+CurveRun curve_of(const system::System& sys, const field::Situations& region, const CurveOptions& o,
+                  const std::vector<std::pair<int, learning::Model>>& models) {
   CurveRun c;
   for (int k : o.checkpoints) {
     int sunk = 0;
-    for (const auto& [putts, model] : r.checkpoint_models)
+    if (k == 0 && o.prior) sunk = play_model(sys, region, *o.prior, o);
+    for (const auto& [putts, model] : models)
       if (putts == k) sunk = play_model(sys, region, model, o);
     c.putts.push_back(k);
     c.sunk.push_back(sunk);
   }
   return c;
+}
+
+CurveRun self_teach_run(const system::System& sys, const field::Situations& region, int run,
+                        const CurveOptions& o, bool from_prior) {
+  selfteach::SelfTeachOptions so;
+  so.budget = o.checkpoints.back();
+  so.seed = derive_seed(o.seed, static_cast<std::uint64_t>(run));
+  so.threads = 1;
+  so.checkpoints = positive_checkpoints(o);
+  if (from_prior) so.prior = o.prior;
+  const auto r = selfteach::self_teach(sys, region, so);
+  return curve_of(sys, region, o, r.checkpoint_models);
+}
+
+CurveRun play_learning_run(const system::System& sys, const field::Situations& region, int run,
+                           const CurveOptions& o, LearnMode mode) {
+  EvaluateOptions e;
+  e.situations = o.checkpoints.back();
+  e.seed = derive_seed(o.seed, static_cast<std::uint64_t>(run));
+  e.threads = 1;
+  e.oracle = false;
+  e.teacher = o.teacher;
+  e.learn = mode;
+  e.learn_checkpoints = positive_checkpoints(o);
+  const auto r = evaluate_learning(sys, *o.prior, region, e);
+  return curve_of(sys, region, o, r.checkpoint_models);
 }
 
 CurveRun teacher_run(const system::System& sys, const field::Situations& region, int run,
@@ -132,7 +177,7 @@ CurveRun crkr_run(const system::System& sys, const field::Situations& region, in
   selfteach::CrkrOptions co;
   co.budget = o.checkpoints.back();
   co.seed = derive_seed(o.seed, static_cast<std::uint64_t>(run));
-  co.checkpoints = o.checkpoints;
+  co.checkpoints = positive_checkpoints(o);
   const auto r = selfteach::crkr_learn(sys, region, co);
   CurveRun c;
   for (const auto& [k, policy] : r.checkpoint_policies) {
@@ -156,15 +201,23 @@ std::vector<CurveRun> learning_curves(const system::System& system, const field:
                                       CurveLearner learner, const CurveOptions& options,
                                       const std::function<void(int, int)>& progress) {
   options.validate();
+  if (needs_prior(learner) && !options.prior)
+    throw InputError(fmt::format("learning curves: --learner {} needs a prior model (--prior)", to_string(learner)));
   std::vector<CurveRun> runs(static_cast<std::size_t>(options.seeds));
   int done = 0;
   // Runs are independent: over MPI processes too (the same bits as one process).
   system::distributed_for(
       system, runs, system::thread_count(options.threads),
       [&](int i, system::SystemData&) {
-        CurveRun r = learner == CurveLearner::kSelfTeach    ? self_teach_run(system, region, i, options)
-                     : learner == CurveLearner::kTeacherGpr ? teacher_run(system, region, i, options)
-                                                            : crkr_run(system, region, i, options);
+        CurveRun r;
+        switch (learner) {
+          case CurveLearner::kSelfTeach: r = self_teach_run(system, region, i, options, false); break;
+          case CurveLearner::kTeacherGpr: r = teacher_run(system, region, i, options); break;
+          case CurveLearner::kCrkr: r = crkr_run(system, region, i, options); break;
+          case CurveLearner::kAdapt: r = self_teach_run(system, region, i, options, true); break;
+          case CurveLearner::kAdaptPlay: r = play_learning_run(system, region, i, options, LearnMode::kResidual); break;
+          case CurveLearner::kAppend: r = play_learning_run(system, region, i, options, LearnMode::kAppend); break;
+        }
         r.learner = learner;
         r.run = i;
         r.situations = options.situations;

@@ -7,11 +7,20 @@
 ///                 ball-only proposals are not: the thesis does not count a person's thinking);
 ///                 GPR on the examples found so far;
 ///   crkr          Cost-regularized Kernel Regression (selfteach/crkr.hpp).
+/// Adaptation from a prior model (CurveOptions::prior; docs/reality.md):
+///   adapt         self-teaching from the prior (self-teach --prior): the robot chooses its targets,
+///                 a residual over the prior learns;
+///   adapt-play    learning while playing random situations of the region (evaluate --learn), the
+///                 residual way;
+///   append        the same, the labels appended to the prior GPR's own data and refitted (the
+///                 thesis's suggestion: "the model could be improved by adding new examples").
+/// A checkpoint 0 plays the prior as it is (the learners that start from scratch: 0 sunk).
 /// A run per seed; at each checkpoint the learner as it stood is played on `situations` test
 /// situations (evaluate_policy, seed `test_seed`, no noise). Runs go in parallel (one per thread);
 /// the same bits for any thread count.
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -21,8 +30,12 @@
 
 namespace mg::experiments {
 
-enum class CurveLearner { kSelfTeach, kTeacherGpr, kCrkr };
-std::string to_string(CurveLearner l);  ///< "self-teach", "teacher-gpr", "crkr"
+enum class CurveLearner { kSelfTeach, kTeacherGpr, kCrkr, kAdapt, kAdaptPlay, kAppend };
+std::string to_string(CurveLearner l);  ///< "self-teach", "teacher-gpr", "crkr", "adapt", "adapt-play", "append"
+/// Inverse of to_string; throws InputError listing the choices.
+CurveLearner parse_curve_learner(const std::string& name);
+/// True for the learners that start from CurveOptions::prior.
+bool needs_prior(CurveLearner l);
 
 struct CurveOptions {
   std::vector<int> checkpoints{10, 25, 50, 100, 150};  ///< putts spent
@@ -31,7 +44,8 @@ struct CurveOptions {
   std::uint64_t seed = 1;
   std::uint64_t test_seed = 7;
   int threads = 0;
-  teacher::TeacherOptions teacher;   ///< teacher-gpr
+  teacher::TeacherOptions teacher;   ///< teacher-gpr; adapt-play and append: the strategy's arrival speed
+  std::shared_ptr<const learning::Model> prior;  ///< adapt, adapt-play, append
   void validate() const;
 };
 

@@ -24,6 +24,12 @@ struct ReproduceOptions {
   std::string revision = "unknown";
   bool plots = true;         ///< draw the figures (matplotlib)
   bool beyond = true;        ///< the "beyond the thesis" part: self-teaching, baselines, noise
+  /// The real-robot rows (flat, multiple-hills): this plant stands in for the real WAM
+  /// (default data/plants/real-wam.yaml); skipped with `real_robot` false.
+  bool real_robot = true;
+  std::string real_robot_plant;
+  /// A plant for the whole run (`--plant`): every putt happens in it (empty: the robot's model).
+  std::string plant;
 };
 
 /// Runs everything; `log` gets one line per step (progress). Throws InputError/IoError naming a

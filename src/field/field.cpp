@@ -10,118 +10,12 @@
 #include "core/check.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "field/map_reader.hpp"
 
 namespace mg::field {
 namespace {
 
 constexpr int kFormatVersion = 1;
-
-/// Reads typed values from a YAML map, naming `source` and the key path in every error, and
-/// rejecting keys it was not asked about (typos must not silently fall back to defaults).
-class MapReader {
- public:
-  MapReader(const YAML::Node& node, std::string source, std::string path)
-      : node_(node), source_(std::move(source)), path_(std::move(path)) {
-    if (!node_.IsMap()) fail(path_.empty() ? "the file" : path_, "expected a mapping");
-  }
-
-  bool has(const std::string& key) {
-    seen_.insert(key);
-    return static_cast<bool>(node_[key]);
-  }
-  YAML::Node require(const std::string& key) {
-    if (!has(key)) fail(full(key), "missing (required)");
-    return node_[key];
-  }
-  double number(const std::string& key) { return to_number(require(key), full(key)); }
-  double number(const std::string& key, double fallback) {
-    return has(key) ? to_number(node_[key], full(key)) : fallback;
-  }
-  std::string text(const std::string& key, const std::string& fallback) {
-    if (!has(key)) return fallback;
-    const YAML::Node n = node_[key];
-    if (!n.IsScalar()) fail(full(key), "expected text");
-    return n.as<std::string>();
-  }
-  template <std::size_t N>
-  std::array<double, N> numbers(const std::string& key) {
-    return to_numbers<N>(require(key), full(key));
-  }
-  template <std::size_t N>
-  std::array<double, N> numbers(const std::string& key, std::array<double, N> fallback) {
-    return has(key) ? to_numbers<N>(node_[key], full(key)) : fallback;
-  }
-  int integer(const std::string& key) {
-    const double v = number(key);
-    if (v != std::floor(v) || std::abs(v) > 1e6) fail(full(key), fmt::format("expected a whole number, got {}", v));
-    return static_cast<int>(v);
-  }
-  template <std::size_t N>
-  std::array<int, N> integers(const std::string& key) {
-    const auto v = numbers<N>(key);
-    std::array<int, N> out{};
-    for (std::size_t i = 0; i < N; ++i) {
-      if (v[i] != std::floor(v[i]) || std::abs(v[i]) > 1e6)
-        fail(full(key), fmt::format("expected whole numbers, got {}", v[i]));
-      out[i] = static_cast<int>(v[i]);
-    }
-    return out;
-  }
-  std::vector<std::string> texts(const std::string& key) {
-    const YAML::Node n = require(key);
-    if (!n.IsSequence()) fail(full(key), "expected a list of names");
-    std::vector<std::string> out;
-    for (std::size_t i = 0; i < n.size(); ++i) {
-      if (!n[i].IsScalar()) fail(fmt::format("{}[{}]", full(key), i), "expected a name");
-      out.push_back(n[i].as<std::string>());
-    }
-    return out;
-  }
-  MapReader child(const std::string& key) { return MapReader(require(key), source_, full(key)); }
-  bool has_child(const std::string& key) { return has(key); }
-
-  /// Throws on any key not read so far.
-  void finish() const {
-    for (const auto& kv : node_) {
-      const auto key = kv.first.as<std::string>();
-      if (!seen_.count(key)) fail(full(key), "unknown key");
-    }
-  }
-
-  std::string full(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  [[noreturn]] void fail(const std::string& what, const std::string& why) const {
-    throw InputError(fmt::format("{}: {}: {}", source_, what, why));
-  }
-  const std::string& source() const { return source_; }
-
-  double to_number(const YAML::Node& n, const std::string& what) const {
-    if (!n.IsScalar()) fail(what, "expected a number");
-    const std::string s = n.as<std::string>();
-    double v = 0.0;
-    std::size_t used = 0;
-    try {
-      v = std::stod(s, &used);
-    } catch (const std::exception&) {
-      fail(what, fmt::format("expected a number, got '{}'", s));
-    }
-    if (used != s.size()) fail(what, fmt::format("expected a number, got '{}'", s));
-    if (!std::isfinite(v)) fail(what, fmt::format("expected a finite number, got '{}'", s));
-    return v;
-  }
-  template <std::size_t N>
-  std::array<double, N> to_numbers(const YAML::Node& n, const std::string& what) const {
-    if (!n.IsSequence() || n.size() != N) fail(what, fmt::format("expected a list of {} numbers", N));
-    std::array<double, N> out{};
-    for (std::size_t i = 0; i < N; ++i) out[i] = to_number(n[i], fmt::format("{}[{}]", what, i));
-    return out;
-  }
-
- private:
-  YAML::Node node_;
-  std::string source_;
-  std::string path_;
-  std::set<std::string> seen_;
-};
 
 SurfaceTerm parse_term(MapReader r, const Field& field, const std::filesystem::path& base_dir) {
   const std::string type = r.text("type", "");

@@ -394,6 +394,15 @@ Predictions predict(const Model& m, const Eigen::MatrixXd& queries) {
   Predictions p;
   p.mean.resize(n, no);
   p.std.resize(n, no);
+  if (m.prior) {
+    Model residual = m;
+    residual.prior.reset();
+    const Predictions base = predict(*m.prior, queries);
+    const Predictions correction = predict(residual, queries);
+    p.mean = base.mean + correction.mean;
+    p.std = (base.std.array().square() + correction.std.array().square()).sqrt().matrix();
+    return checked(p);
+  }
   if (m.method == Method::kGpr) {
     for (int o = 0; o < no; ++o) {
       const stats::GpModel& gp = m.gps[static_cast<std::size_t>(o)];
@@ -484,10 +493,18 @@ nlohmann::json model_to_json(const Model& m) {
     for (const auto& [n, v] : m.fixed) j["fixed"][n] = v;
   }
   j["fit"] = report_to_json(m);
+  if (m.prior) j["prior"] = model_to_json(*m.prior);
   return j;
 }
 
-Model model_from_json(const nlohmann::json& j, std::string_view where) {
+namespace {
+Model model_from_json_at(const nlohmann::json& j, std::string_view where, int depth);
+}  // namespace
+
+Model model_from_json(const nlohmann::json& j, std::string_view where) { return model_from_json_at(j, where, 0); }
+
+namespace {
+Model model_from_json_at(const nlohmann::json& j, std::string_view where, int depth) {
   const std::string fmt_name = text(j, "format", where);
   if (fmt_name != "minigolf-learner")
     throw InputError(fmt::format("{}: format: expected \"minigolf-learner\", got \"{}\"", where, fmt_name));
@@ -589,8 +606,18 @@ Model model_from_json(const nlohmann::json& j, std::string_view where) {
       rep.bic = number(r, "bic", fw);
     }
   }
+  if (j.contains("prior")) {
+    if (depth + 1 >= kMaxPriorDepth)
+      throw InputError(fmt::format("{}.prior: residual models nest at most {} deep", where, kMaxPriorDepth));
+    auto prior = std::make_shared<Model>(model_from_json_at(j["prior"], fmt::format("{}.prior", where), depth + 1));
+    if (prior->input_names != m.input_names || prior->output_names != m.output_names)
+      throw InputError(fmt::format("{}.prior: expected the residual's inputs and outputs", where));
+    if (prior->fixed != m.fixed) throw InputError(fmt::format("{}.prior: expected the residual's fixed values", where));
+    m.prior = std::move(prior);
+  }
   return m;
 }
+}  // namespace
 
 void save_model(const Model& model, const std::filesystem::path& path) {
   write_file_atomic(path, model_to_json(model).dump(2) + "\n");

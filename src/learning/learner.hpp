@@ -6,6 +6,7 @@
 /// constant column), so `reg_covar` is scale-free; the GPs standardise their output themselves.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -89,6 +90,11 @@ struct Model {
   /// club speed "speed" [m/s] of an angle-only data set, thesis 6.2.1): who plays the model uses
   /// them as they are. File key "fixed" (optional).
   std::vector<std::pair<std::string, double>> fixed;
+  /// A residual model over a prior (adaptation, docs/reality.md): when set, this model's GPs learn
+  /// the correction to `prior`, with the same inputs and outputs; a prediction is the prior's
+  /// plus this model's, its std the root of their squares summed. File key "prior" (optional,
+  /// a whole learner model; at most kMaxPriorDepth deep).
+  std::shared_ptr<const Model> prior;
   /// The fixed value `name`, or nullptr.
   const double* fixed_value(std::string_view name) const {
     for (const auto& [n, v] : fixed)
@@ -110,6 +116,8 @@ struct Predictions {
 /// at 1000 rows with 10 starts on one core), so larger sets are refused with that message
 /// rather than left to run for minutes; GMR has no such bound (linear in N).
 inline constexpr int kMaxGprRows = 1000;
+/// Residual models over residual models (adapting an adapted model) nest at most this deep.
+inline constexpr int kMaxPriorDepth = 8;
 
 Model train(const Dataset& data, const TrainOptions& options);
 

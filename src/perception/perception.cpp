@@ -14,6 +14,24 @@ Perceived SimulatorPerception::perceive(double /*now*/) noexcept {
   return p;
 }
 
+Perceived DelayedPerception::perceive(double now) noexcept {
+  head_ = (head_ + 1) % kHistory;
+  times_[static_cast<std::size_t>(head_)] = now;
+  history_[static_cast<std::size_t>(head_)] = source_->perceive(now);
+  count_ = count_ < kHistory ? count_ + 1 : kHistory;
+  // The newest answer at least `latency` old; the oldest kept if none is.
+  int pick = head_;
+  for (int k = 0; k < count_; ++k) {
+    pick = (head_ - k + kHistory) % kHistory;
+    if (times_[static_cast<std::size_t>(pick)] <= now - latency_) break;
+  }
+  Perceived p = history_[static_cast<std::size_t>(pick)];
+  p.ball[0] += offset_[0];
+  p.ball[1] += offset_[1];
+  p.age += now - times_[static_cast<std::size_t>(pick)];
+  return p;
+}
+
 Perceived NetworkPerception::perceive(double now) noexcept {
   feed_->poll(now);
   Perceived p;

@@ -41,6 +41,26 @@ class SimulatorPerception final : public Perception {
   const mjData* data_;
 };
 
+/// A source as a plant's vision really is (plant/plant.hpp): what `source` perceived `latency`
+/// seconds ago (the oldest answer it has until then), the ball moved by a constant `ball_offset`
+/// (the error of this putt's estimate). Holds a reference to `source`. Real-time safe: a fixed
+/// history, no allocation.
+class DelayedPerception final : public Perception {
+ public:
+  DelayedPerception(Perception& source, double latency, std::array<double, 2> ball_offset)
+      : source_(&source), latency_(latency), offset_(ball_offset) {}
+  Perceived perceive(double now) noexcept override;
+  static constexpr int kHistory = 128;  ///< answers kept (robot updates: 1.28 s at 100 Hz)
+
+ private:
+  Perception* source_;
+  double latency_;
+  std::array<double, 2> offset_;
+  std::array<double, kHistory> times_{};
+  std::array<Perceived, kHistory> history_{};
+  int head_ = 0, count_ = 0;
+};
+
 /// The network vision feed: polls it (draining pending datagrams), then reports its latest
 /// message. Fresh while the last accepted message arrived less than `max_age` ago. Holds a
 /// reference: `feed` must outlive it.

@@ -171,7 +171,9 @@ PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle,
     request.record_interval = record_interval;
     request.validate();
     field::check_hole_position(sys.field(), r.hole);
-    r.outcome = sim::simulate_putt(sys.ball_world(), data.ball.get(), r.hole, request);
+    const auto real = system::real_hole(sys, r.hole);  // where the plant's hole really is
+    field::check_hole_position(sys.ball_world().field(), real);
+    r.outcome = sim::simulate_putt(sys.ball_world(), data.ball.get(), real, request);
     return r;
   }
   // as `minigolf putt` (the arm)
@@ -450,13 +452,23 @@ PYBIND11_MODULE(_minigolf, m) {
   py::class_<system::System>(m, "System",
                              "A ready minigolf system: the field's world with the WAM and club, the ball-only "
                              "world, the hitting model and the control module. Immutable; shared by threads.")
-      .def(py::init([](const std::string& field, const std::string& config, const std::string& hitting_model) {
+      .def(py::init([](const std::string& field, const std::string& config, const std::string& hitting_model,
+                       const std::string& plant) {
              py::gil_scoped_release release;
-             return std::make_unique<system::System>(system::load_config(config, field, hitting_model));
+             return std::make_unique<system::System>(system::load_config(config, field, hitting_model),
+                                                     plant.empty() ? plant::Plant{} : plant::load_plant(plant));
            }),
-           py::arg("field") = "flat", py::arg("config") = "", py::arg("hitting_model") = "",
+           py::arg("field") = "flat", py::arg("config") = "", py::arg("hitting_model") = "", py::arg("plant") = "",
            "field: shipped name or path; config: module YAML (empty: defaults); hitting_model: DS model file "
-           "(empty: the configured default)")
+           "(empty: the configured default); plant: plant file, the world as it really is (docs/reality.md; "
+           "empty: the robot's model)")
+      .def_property_readonly("plant", [](const system::System& s) -> py::object {
+             if (s.plant().source.empty()) return py::none();
+             py::dict d;
+             d["path"] = s.plant().source;
+             d["hash"] = s.plant().hash;
+             return d;
+           }, "The plant file's path and content hash, or None")
       .def_property_readonly("field", &system::System::field, py::return_value_policy::reference_internal)
       .def_property_readonly("arm_world", &system::System::arm_world, py::return_value_policy::reference_internal,
                              "Field + WAM + club")

@@ -103,6 +103,9 @@ void WamMount::validate() const {
   require_in_range("mount.club.head_thickness", club.head_thickness, 0.005, 0.1);
   require_in_range("mount.club.head_height", club.head_height, 0.005, 0.1);
   require_in_range("mount.club.head_mass", club.head_mass, 1e-3, 2.0);
+  require_in_range("mount.club.face_restitution", club.face_restitution, 0.05, 0.99);
+  for (std::size_t j = 0; j < joint_friction.size(); ++j)
+    require_in_range(fmt::format("mount.joint_friction[{}]", j), joint_friction[j], 0.0, 20.0);
 }
 
 std::string wam_bodies_mjcf(const WamMount& mount) {
@@ -138,6 +141,8 @@ std::string wam_bodies_mjcf(const WamMount& mount) {
         R"(<joint name="wam_j{}" type="hinge" pos="{}" axis="{}" limited="true" range="{:.17g} {:.17g}" armature="{:.17g}" damping="{:.17g}"/>)",
         i, vec3(joint_pos), vec3(joint_axis), kJointLower[k], kJointUpper[k], kArmature[k],
         kDamping[k]);
+    if (mount.joint_friction[k] > 0.0)  // only then: a mount without friction is the same XML
+      out.insert(out.size() - 2, fmt::format(R"( frictionloss="{:.17g}")", mount.joint_friction[k]));
     out += inertial(kLinkInertials[k]);
     out += link_visuals(i, joint_pos, joint_axis);
     ++open;

@@ -32,6 +32,9 @@ struct WamMount {
   ClubGeometry club{};
   /// Draw a visual (non-colliding, massless) pedestal column from z = 0 up to the plate.
   bool pedestal = true;
+  /// [N m] Coulomb friction per joint (MJCF `frictionloss`; 0: none, as in the robot's model).
+  /// A plant's truth (plant/plant.hpp): the module's model never has it.
+  std::array<double, kNumJoints> joint_friction{};
 
   /// Throws mg::InputError naming the field if a value is non-finite or implausible.
   void validate() const;

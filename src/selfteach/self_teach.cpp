@@ -1,5 +1,7 @@
 #include "selfteach/self_teach.hpp"
 
+#include "selfteach/planner.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -32,13 +34,10 @@ void SelfTeachOptions::validate() const {
 
 namespace {
 
-constexpr double kWindowAngle = 0.004;  ///< [rad] the sinking window's scale (teacher margins)
-constexpr double kWindowSpeed = 0.03;   ///< [m/s]
 constexpr double kElasticRatio = 1.6;   ///< launch / club speed before any putt: (1 + e), e = 0.6
 constexpr double kOnTarget = 0.01;      ///< [m] a label this close to its own target is checked
 constexpr double kBatchSpread = 0.05;   ///< [m] targets of one round keep apart by about this
 constexpr std::size_t kMaxTrainingLabels = 400;
-constexpr double kPseudoCover = 0.02;   ///< [m] a real label this close replaces a pseudo-label
 constexpr double kTriedRadius = 0.03;   ///< [m] an earlier target this close halves a candidate's score  ///< GPR cost: thinned evenly beyond this
 
 double median(std::vector<double> v, double fallback) {
@@ -47,126 +46,6 @@ double median(std::vector<double> v, double fallback) {
   const std::size_t n = v.size();
   return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
-
-Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::string>& inputs,
-                          std::array<double, 2> hole) {
-  Eigen::VectorXd x(static_cast<Eigen::Index>(inputs.size()));
-  for (std::size_t c = 0; c < inputs.size(); ++c)
-    x(static_cast<Eigen::Index>(c)) = field::situation_input(field, inputs[c], hole);
-  return x;
-}
-
-/// The planner: prior (aim, rolling distance, measured launch relation) + a GP per output on the
-/// labels' residuals from it.
-class Planner {
- public:
-  Planner(const system::System& system, const field::Situations& region, double arrival,
-          std::uint64_t seed)
-      : sys_(system), region_(region), inputs_(region.learner_inputs()), arrival_(arrival),
-        rng_(derive_seed(seed, 11)) {}
-
-  void set_arrival(double arrival) { arrival_ = arrival; }
-
-  /// Re-estimates the launch relation from `putts` and refits the residual GPs to `labels` plus
-  /// the pseudo-labels of the putts that gave none near their target.
-  void update(const std::vector<PuttRecord>& putts, std::vector<Label> labels) {
-    const auto relation = launch_relation(putts);
-    bias_ = relation[0];
-    ratio_ = relation[1];
-    const std::size_t real = labels.size();
-    for (std::size_t i = 0; i < putts.size(); ++i) {
-      const auto& p = putts[i];
-      if (!p.hit) continue;
-      bool covered = false;
-      for (std::size_t k = 0; k < real && !covered; ++k)
-        covered = std::hypot(labels[k].hole[0] - p.target[0], labels[k].hole[1] - p.target[1]) < kPseudoCover;
-      if (!covered) labels.push_back(pseudo_label(p, static_cast<int>(i)));
-    }
-    const int outputs = region_.learn_speed ? 2 : 1;
-    gps_.clear();
-    if (labels.empty()) return;
-    const auto n = static_cast<Eigen::Index>(labels.size());
-    Eigen::MatrixXd x(n, static_cast<Eigen::Index>(inputs_.size()));
-    Eigen::MatrixXd r(n, outputs);
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const Label& l = labels[static_cast<std::size_t>(i)];
-      x.row(i) = input_row(sys_.field(), inputs_, l.hole).transpose();
-      const auto [a0, v0] = prior(l.hole);
-      r(i, 0) = l.angle - a0;
-      if (outputs == 2) r(i, 1) = l.speed - v0;
-    }
-    // Hyperparameters are re-optimised when the label count has grown by a third; in between
-    // the last ones are reused (the GP is then rebuilt exactly, only not re-tuned).
-    const bool refit = hyper_.empty() || n >= fitted_at_ + std::max<Eigen::Index>(1, fitted_at_ / 3);
-    if (refit) {
-      hyper_.clear();
-      for (int o = 0; o < outputs; ++o) {
-        stats::GprOptions go;
-        go.restarts = 3;
-        hyper_.push_back(stats::fit_gpr(x, r.col(o), rng_, go).hyper);
-      }
-      fitted_at_ = n;
-    }
-    for (int o = 0; o < outputs; ++o) gps_.push_back(stats::make_gp_model(x, r.col(o), hyper_[static_cast<std::size_t>(o)]));
-  }
-
-  /// The putt `p` corrected by how it missed its target (the teacher's first Newton step).
-  Label pseudo_label(const PuttRecord& p, int index) const {
-    const auto& f = sys_.field();
-    const double distance = std::max(0.1, std::hypot(p.target[0] - f.tee[0], p.target[1] - f.tee[1]));
-    Label l;
-    l.hole = p.target;
-    l.angle = p.angle + std::clamp(p.approach_lateral / distance, -0.05, 0.05);
-    l.speed = p.speed;
-    l.putt = index;
-    if (region_.learn_speed) {
-      const double a_roll = 5.0 / 7.0 * f.rolling_resistance * 9.81;
-      const double e = p.approach_speed * p.approach_speed - 2.0 * a_roll * std::max(0.0, p.approach_along);
-      const double rolling_per_club = 5.0 / 7.0 * ratio_;  // ball rolling speed per club speed
-      const double v2 = p.speed * p.speed - (e - arrival_ * arrival_) / (rolling_per_club * rolling_per_club);
-      l.speed = std::clamp(std::sqrt(std::max(v2, 0.0)), 0.7 * p.speed, 1.3 * p.speed);
-    }
-    l.arrival_speed = arrival_;
-    return l;
-  }
-
-  /// The prior's club (angle, speed) for a hole.
-  std::array<double, 2> prior(std::array<double, 2> hole) const {
-    return prior_club(sys_.field(), region_, hole, arrival_, bias_, ratio_);
-  }
-
-  /// The putt for a hole, inside the module's envelope, and its uncertainty in window units.
-  std::array<double, 3> plan(std::array<double, 2> hole) const {
-    auto [a, v] = prior(hole);
-    double score = 1.0;
-    if (!gps_.empty()) {
-      const Eigen::VectorXd x = input_row(sys_.field(), inputs_, hole);
-      const auto pa = stats::gp_predict(gps_[0], x);
-      a += pa.mean;
-      score = std::sqrt(pa.latent_variance) / kWindowAngle;
-      if (gps_.size() > 1) {
-        const auto pv = stats::gp_predict(gps_[1], x);
-        v += pv.mean;
-        score = std::max(score, std::sqrt(pv.latent_variance) / kWindowSpeed);
-      }
-    }
-    const auto& c = sys_.config();
-    a = std::clamp(a, c.angle_min + 1e-6, c.angle_max - 1e-6);
-    if (region_.learn_speed) v = std::clamp(v, c.speed_min, c.speed_max);
-    return {a, v, score};
-  }
-
- private:
-  const system::System& sys_;
-  const field::Situations& region_;
-  std::vector<std::string> inputs_;
-  double arrival_;
-  Rng rng_;
-  double bias_ = 0.0, ratio_ = kElasticRatio;
-  std::vector<stats::GpHyperparameters> hyper_;
-  Eigen::Index fitted_at_ = 0;
-  std::vector<stats::GpModel> gps_;
-};
 
 std::vector<std::array<double, 2>> candidate_targets(const field::Situations& region, int n,
                                                      std::uint64_t seed) {
@@ -273,7 +152,13 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
 
   SelfTeachResult res;
   res.arrival_speed = rules.arrival_speed;
-  Planner planner(system, region, rules.arrival_speed, options.seed);
+  Planner planner(system, region, rules.arrival_speed, options.seed, options.prior);
+  // With a prior model the result is a residual over it (real labels only); else GPR on labels.
+  const auto learned = [&](int putts) {
+    // (the planner stands at `putts` putts when a checkpoint is taken: batches end there)
+    return planner.has_model_prior() ? planner.residual_model()
+                                     : model_from_labels(system, region, res.labels, putts, options.seed);
+  };
   const auto candidates = candidate_targets(region, options.candidates, options.seed);
   std::vector<std::array<double, 2>> tried;
   std::vector<int> checkpoints = options.checkpoints;
@@ -369,7 +254,7 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
     while (next_checkpoint < checkpoints.size() && checkpoints[next_checkpoint] <= used) {
       const int c = checkpoints[next_checkpoint++];
       try {
-        res.checkpoint_models.emplace_back(c, model_from_labels(system, region, res.labels, c, options.seed));
+        res.checkpoint_models.emplace_back(c, learned(c));
       } catch (const InputError&) {
         // Fewer than two labels so far: no model at this checkpoint (it counts as no success).
       }
@@ -377,8 +262,8 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
     if (progress) progress(used, options.budget);
   }
   res.arrival_speed = rules.arrival_speed;
-  res.trained = res.labels.size() >= 2;
-  if (res.trained) res.model = model_from_labels(system, region, res.labels, -1, options.seed);
+  res.trained = planner.has_model_prior() || res.labels.size() >= 2;
+  if (res.trained) res.model = learned(-1);
   return res;
 }
 

@@ -28,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,10 @@ struct SelfTeachOptions {
   /// Putt counts after which the model is also trained and kept (learning curves); the model
   /// after k putts is the model a budget of k would give.
   std::vector<int> checkpoints;
+  /// A model learned elsewhere to start from (`self-teach --prior`): the planner's prior is its
+  /// prediction instead of the physical one, and the model written is a residual over it
+  /// (selfteach/planner.hpp). nullptr: from scratch.
+  std::shared_ptr<const learning::Model> prior;
   void validate() const;          ///< InputError naming the field
 };
 

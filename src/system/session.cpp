@@ -89,7 +89,7 @@ Session::Session(const ModuleConfig& config, const SessionOptions& options, std:
     : config_(config),
       options_(options),
       out_(out),
-      system_(std::make_unique<System>(config)),
+      system_(std::make_unique<System>(config, options.plant)),
       world_(system_->arm_world()),
       d_(world_.make_data()),
       truth_(world_, d_.get()),

@@ -76,6 +76,10 @@ struct SessionOptions {
   bool vision_sim = false;  ///< normal mode: the built-in vision simulator publishes on loopback
   bool echo = false;        ///< print every command line before its answer (scripts, logs)
   std::uint64_t seed = 1;   ///< vision simulator noise and dropouts
+  /// The world as it really is (plant/plant.hpp). The session's world is built from it (grass,
+  /// tilt, the arm's friction and club face); the launch, hole and vision parts act in the putt
+  /// harness (system::arm_putt) only, not here.
+  plant::Plant plant;
 };
 
 /// Core-update wall time over a whole session in 1 us bins (no allocation, any length).

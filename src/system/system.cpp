@@ -1,11 +1,14 @@
 #include "system/system.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/rng.hpp"
 #include "ds/hitting_model.hpp"
 
 namespace mg::system {
@@ -34,16 +37,28 @@ control::ModuleConfig load_config(const std::string& config_path, const std::str
   return config;
 }
 
-System::System(const control::ModuleConfig& config) : System(config, field::load_field(config.field)) {}
+System::System(const control::ModuleConfig& config, plant::Plant plant)
+    : System(config, field::load_field(config.field), std::move(plant)) {}
 
-System::System(const control::ModuleConfig& config, field::Field field) : config_(config) {
+System::System(const control::ModuleConfig& config, field::Field field, plant::Plant plant)
+    : config_(config), belief_(std::move(field)), plant_(std::move(plant)) {
   config_.validate();
+  plant_.validate();
   config_.hitting_model = resolve_data_path(config_.hitting_model).string();
   ds::HittingModel hitting = ds::read_hitting_model(config_.hitting_model);
-  arm_world_ = std::make_unique<sim::World>(control::make_world_with_arm(std::move(field)));
+  // The robot's mount (its model of itself) and the real one: friction and club face.
+  const robot::WamMount belief_mount;
+  robot::WamMount true_mount = belief_mount;
+  true_mount.joint_friction = plant_.arm.joint_friction;
+  if (plant_.arm.club_restitution_scale != 1.0)
+    true_mount.club.face_restitution = std::min(0.99, belief_mount.club.face_restitution * plant_.arm.club_restitution_scale);
+  arm_world_ = std::make_unique<sim::World>(
+      control::make_world_with_arm(plant::true_field(belief_, plant_), true_mount));
   ball_world_ = std::make_unique<sim::World>(control::make_ball_world(*arm_world_));
+  // The module's model reads the arm's kinematics and inertia (the same in both mounts) and the
+  // ball's radius from the world, and the robot's own mount: never the plant.
   module_ = std::make_unique<control::ModuleModel>(
-      control::make_module_model(*arm_world_, std::move(hitting), config_));
+      control::make_module_model(*arm_world_, std::move(hitting), config_, belief_mount));
 }
 
 void System::check_request(double angle, double speed, const std::string& what) const {
@@ -60,9 +75,55 @@ SystemData::SystemData(const System& system)
     : arm(system.arm_world().make_data()), ball(system.ball_world().make_data()),
       scratch(std::make_unique<control::PuttScratch>()) {}
 
+namespace {
+
+/// A seed from a position's bits (the same situation, the same vision error).
+std::uint64_t position_seed(std::uint64_t seed, std::array<double, 2> p) {
+  std::uint64_t bits[2];
+  std::memcpy(bits, p.data(), sizeof bits);
+  return derive_seed(derive_seed(seed, bits[0]), bits[1]);
+}
+
+double gaussian(Rng& rng) {
+  // Box-Muller from 53-bit uniforms (portable).
+  const double u1 = (static_cast<double>(rng() >> 11) + 0.5) * 0x1.0p-53;
+  const double u2 = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
+}
+
+}  // namespace
+
+std::array<double, 2> real_hole(const System& system, std::array<double, 2> hole) {
+  const plant::Plant& p = system.plant();
+  const auto& offset = p.field.hole_offset;
+  if (offset[0] != 0.0 || offset[1] != 0.0) hole = {hole[0] + offset[0], hole[1] + offset[1]};
+  if (p.perception.noise > 0.0) {
+    Rng rng(position_seed(21, hole));
+    const double ex = gaussian(rng), ey = gaussian(rng);
+    hole = {hole[0] - p.perception.noise * ex, hole[1] - p.perception.noise * ey};
+  }
+  return hole;
+}
+
 control::FullPuttResult arm_putt(const System& system, SystemData& data, std::array<double, 2> hole,
                                  double angle, double speed, control::FullPuttOptions options) {
   field::check_hole_position(system.field(), hole);
+  const plant::Plant& p = system.plant();
+  if (!p.empty()) {
+    const auto seen = hole;
+    hole = real_hole(system, seen);
+    field::check_hole_position(system.arm_world().field(), hole);
+    if (p.arm.torque_noise > 0.0) options.torque_noise = std::hypot(options.torque_noise, p.arm.torque_noise);
+    options.launch_angle_bias += p.arm.launch_angle_bias;
+    options.club_speed_scale *= p.arm.club_speed_scale;
+    options.perception_latency += p.perception.latency;
+    if (p.perception.noise > 0.0) {
+      Rng rng(position_seed(22, seen));
+      const double ex = gaussian(rng), ey = gaussian(rng);
+      options.perceived_ball_offset[0] += p.perception.noise * ex;
+      options.perceived_ball_offset[1] += p.perception.noise * ey;
+    }
+  }
   // The roll finishes in the ball-only world once the club has left the ball (same outcome,
   // notes/speed.md); the scratch caches the approach to the rest pose of recent angles.
   if (options.ball_world == nullptr) options.ball_world = &system.ball_world();
@@ -73,6 +134,10 @@ control::FullPuttResult arm_putt(const System& system, SystemData& data, std::ar
 sim::PuttOutcome ball_putt(const System& system, SystemData& data, std::array<double, 2> hole,
                            double angle, double speed, double record_interval) {
   field::check_hole_position(system.field(), hole);
+  if (!system.plant().empty()) {
+    hole = real_hole(system, hole);
+    field::check_hole_position(system.ball_world().field(), hole);
+  }
   sim::PuttRequest request;
   request.angle = angle;
   request.speed = speed;

@@ -13,6 +13,7 @@
 #include "control/full_system.hpp"
 #include "control/module_config.hpp"
 #include "field/field.hpp"
+#include "plant/plant.hpp"
 #include "sim/putt.hpp"
 #include "sim/world.hpp"
 
@@ -29,20 +30,28 @@ std::filesystem::path resolve_data_path(const std::string& text);
 control::ModuleConfig load_config(const std::string& config_path, const std::string& field = "",
                                   const std::string& hitting_model = "");
 
+/// Belief and truth (ARCHITECTURE.md): `field()`, `module()` and `config()` are the robot's
+/// knowledge, what the teacher, planner, self-teacher and learners read; the worlds are built from
+/// the truth, the field with the plant applied (plant::true_field) and the arm with the plant's
+/// friction and club, and arm_putt / ball_putt apply the plant's hole, launch and vision. With an
+/// empty plant the worlds are built from the field itself: the same bits as without a plant.
 class System {
  public:
   /// Loads the field (config.field) and the hitting model, builds both worlds and the module.
   /// Throws InputError/IoError for a bad configuration or file.
-  explicit System(const control::ModuleConfig& config);
+  explicit System(const control::ModuleConfig& config, plant::Plant plant = {});
   /// The same with an already loaded field (config.field is then only a label).
-  System(const control::ModuleConfig& config, field::Field field);
+  System(const control::ModuleConfig& config, field::Field field, plant::Plant plant = {});
   System(const System&) = delete;
   System& operator=(const System&) = delete;
 
   const control::ModuleConfig& config() const { return config_; }
-  const field::Field& field() const { return arm_world_->field(); }
-  const sim::World& arm_world() const { return *arm_world_; }    ///< field + WAM + club
-  const sim::World& ball_world() const { return *ball_world_; }  ///< field only (the arm world's options)
+  /// The field as the robot believes it is (its field file).
+  const field::Field& field() const { return belief_; }
+  /// The world as it is: the oracle and the world builder may read it, the robot may not.
+  const plant::Plant& plant() const { return plant_; }
+  const sim::World& arm_world() const { return *arm_world_; }    ///< true field + WAM + club
+  const sim::World& ball_world() const { return *ball_world_; }  ///< true field only (the arm world's options)
   const control::ModuleModel& module() const { return *module_; }
 
   /// Throws InputError naming `what` unless (angle, speed) is inside the module's safe envelope.
@@ -50,6 +59,8 @@ class System {
 
  private:
   control::ModuleConfig config_;
+  field::Field belief_;
+  plant::Plant plant_;
   std::unique_ptr<sim::World> arm_world_;
   std::unique_ptr<sim::World> ball_world_;
   std::unique_ptr<control::ModuleModel> module_;
@@ -63,12 +74,19 @@ struct SystemData {
   std::unique_ptr<control::PuttScratch> scratch;  ///< hand-off data, approach cache (bit-neutral)
 };
 
-/// The arm hits the ball (lockstep simulator mode) with the hole at `hole`: hitting angle
-/// `angle` [rad], club speed `speed` [m/s]. Deterministic. Throws InputError for a bad hole.
+/// Where the hole really is when the robot sees it at `hole`: + the plant's hole offset and this
+/// situation's vision error (plant perception.noise, drawn from the hole's bits: the same
+/// situation has the same error in every putt, the oracle's included). `hole` without a plant.
+std::array<double, 2> real_hole(const System& system, std::array<double, 2> hole);
+
+/// The arm hits the ball (lockstep simulator mode) with the hole seen at `hole` (real_hole is
+/// where it is): hitting angle `angle` [rad], club speed `speed` [m/s]; the plant's arm and vision
+/// act (the module sees the ball off by this situation's vision error). Deterministic. Throws InputError for a bad hole.
 control::FullPuttResult arm_putt(const System& system, SystemData& data, std::array<double, 2> hole,
                                  double angle, double speed, control::FullPuttOptions options = {});
 
-/// The ball alone, launched from the tee at `angle` [rad], `speed` [m/s] (no spin).
+/// The ball alone, launched from the tee at `angle` [rad], `speed` [m/s] (no spin), the hole seen
+/// at `hole` (really at real_hole(system, hole)).
 sim::PuttOutcome ball_putt(const System& system, SystemData& data, std::array<double, 2> hole,
                            double angle, double speed, double record_interval = 0.0);
 

@@ -180,6 +180,37 @@ TEST(LearningModel, SaveLoadRoundTripIsBitIdentical) {
   }
 }
 
+TEST(LearningModel, AResidualModelAddsItsCorrectionToItsPriorAndRoundTrips) {
+  testing::ScratchDir dir;
+  const Dataset d = flat_field(20, 21);
+  const Eigen::MatrixXd q = flat_field(30, 22).inputs;
+  for (Method m : {Method::kGpr, Method::kGmr}) {
+    auto prior = std::make_shared<Model>(train(d, options(m)));
+    // The residual: a GPR on a constant correction of +0.01 for every output.
+    Dataset r = d;
+    r.outputs.setConstant(0.01);
+    Model residual = train(r, options(Method::kGpr));
+    residual.prior = prior;
+    const Predictions p = predict(residual, q), base = predict(*prior, q);
+    Model alone = residual;
+    alone.prior.reset();
+    const Predictions c = predict(alone, q);
+    EXPECT_TRUE(same_bits(p.mean, Eigen::MatrixXd(base.mean + c.mean)));
+    EXPECT_NEAR((p.mean - base.mean).maxCoeff(), 0.01, 1e-9);
+    EXPECT_TRUE((p.std.array() >= base.std.array()).all());
+    const auto path = dir / "residual.json";
+    save_model(residual, path);
+    const Model back = load_model(path);
+    ASSERT_TRUE(back.prior);
+    EXPECT_EQ(back.prior->method, m);
+    EXPECT_TRUE(same_bits(predict(back, q).mean, p.mean));
+    // A prior whose columns differ is refused.
+    auto j = model_to_json(residual);
+    j["prior"]["outputs"] = {"angle", "other"};
+    EXPECT_THROW(model_from_json(j, "m.json"), InputError);
+  }
+}
+
 TEST(LearningModel, SameSeedSameModel) {
   const Dataset d = flat_field(20, 15);
   for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {

@@ -108,14 +108,15 @@ class PuttEnv(_Base):
     field: a shipped field name or path, or a sequence of them (each episode draws one).
     mode: "arm" (the full system: the WAM hits the ball) or "ball" (the ball alone: fast).
     observe_field: append the field's index to the observation (default: with several fields).
-    config, hitting_model: as for `minigolf.System`. max_duration: of the ball's roll [s].
+    config, hitting_model, plant: as for `minigolf.System` (plant: the world as it really is).
+    max_duration: of the ball's roll [s].
     """
 
     metadata = {"render_modes": []}
 
     def __init__(self, field="flat", mode: str = "arm", observe_field: Optional[bool] = None,
                  config: str = "", hitting_model: str = "", max_duration: float = 30.0,
-                 render_mode: Optional[str] = None):
+                 render_mode: Optional[str] = None, plant: str = ""):
         if mode not in ("arm", "ball"):
             raise ValueError(f"PuttEnv: mode: expected 'arm' or 'ball', got '{mode}'")
         if render_mode is not None:
@@ -126,7 +127,8 @@ class PuttEnv(_Base):
         self.render_mode = None
         self.mode = mode
         self.max_duration = float(max_duration)
-        self.systems = [_minigolf.System(field=n, config=config, hitting_model=hitting_model) for n in names]
+        self.systems = [_minigolf.System(field=n, config=config, hitting_model=hitting_model, plant=plant)
+                        for n in names]
         self._data = [s.make_data() for s in self.systems]
         self.observe_field = len(names) > 1 if observe_field is None else bool(observe_field)
         lows, highs = [], []

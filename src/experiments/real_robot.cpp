@@ -1,0 +1,95 @@
+#include "experiments/real_robot.hpp"
+
+#include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "core/io.hpp"
+#include "experiments/adaptation.hpp"
+#include "experiments/evaluate.hpp"
+#include "selfteach/self_teach.hpp"
+#include "system/system.hpp"
+
+namespace mg::experiments {
+namespace {
+
+std::string pct(double r) { return std::isfinite(r) ? fmt::format("{:.0f} %", 100.0 * r) : "-"; }
+
+}  // namespace
+
+std::map<std::string, std::string> real_robot_rows(const control::ModuleConfig& config, const std::string& name,
+                                                   const field::Situations& region,
+                                                   const std::map<std::string, learning::Model>& models,
+                                                   const RealRobotOptions& opt) {
+  std::map<std::string, std::string> md;
+  const field::Field belief = field::load_field(config.field);
+  const system::System real(config, belief, opt.plant);
+  EvaluateOptions eo;
+  eo.situations = opt.attempts;
+  eo.seed = derive_seed(opt.seed, 66);
+  eo.threads = opt.threads;
+  eo.teacher.strategy = teacher::parse_strategy(region.strategy);
+  eo.teacher.learn_speed = region.learn_speed;
+  eo.teacher.fixed_speed = region.speed;
+  std::string csv = "field,method,model,attempts,sunk,oracle_found,thesis_ratio\n";
+  for (const std::string method : {"gpr", "gmr"}) {
+    const auto it = models.find(method);
+    if (it == models.end()) continue;
+    const learning::Model& nominal = it->second;
+    eo.oracle = true;
+    const Evaluation before = evaluate_model(real, nominal, region, eo);
+    selfteach::SelfTeachOptions so;
+    so.budget = opt.adaptation_putts;
+    so.seed = opt.seed;
+    so.threads = opt.threads;
+    so.prior = std::make_shared<const learning::Model>(nominal);
+    const auto adapted = selfteach::self_teach(real, region, so);
+    eo.oracle = false;
+    const Evaluation after = evaluate_model(real, adapted.trained ? adapted.model : nominal, region, eo);
+    const double thesis = opt.thesis ? opt.thesis(name, method) : NAN;
+    md["rows"] += fmt::format("| {} | {} | {} of {} | {} of {} ({} sank while adapting) | {} | {} |\n", name, method,
+                              before.sunk, opt.attempts, after.sunk, opt.attempts, adapted.sunk,
+                              pct(before.oracle_ceiling), pct(thesis));
+    csv += fmt::format("{},{},nominal,{},{},{},{}\n", name, method, opt.attempts, before.sunk, before.oracle_found,
+                       std::isfinite(thesis) ? fmt::format("{}", thesis) : "");
+    csv += fmt::format("{},{},adapted-{},{},{},,\n", name, method, opt.adaptation_putts, opt.attempts, after.sunk);
+    opt.say(fmt::format("{}: real-robot stand-in, {}: nominal {} of {}, after {} own putts {} of {}", name, method,
+                        before.sunk, opt.attempts, opt.adaptation_putts, after.sunk, opt.attempts));
+  }
+  write_file_atomic(opt.csv_path(name + "_real_robot.csv"), csv);
+
+  // Adaptation curves over random plants, the GPR nominal model.
+  const auto gpr = models.find("gpr");
+  if (gpr == models.end()) return md;
+  AdaptationOptions ao;
+  ao.plants = opt.quick ? 4 : 10;
+  ao.plant_seed = opt.seed;
+  ao.situations = opt.quick ? 30 : 100;
+  ao.seed = opt.seed;
+  ao.test_seed = derive_seed(opt.seed, 67);
+  ao.threads = opt.threads;
+  ao.checkpoints = {0, 1, 2, 3, 5, 10};
+  const auto prior = std::make_shared<const learning::Model>(gpr->second);
+  const auto rows = adaptation_study(config, prior, region, ao);
+  write_file_atomic(opt.csv_path(name + "_adaptation_runs.csv"), adaptation_csv(rows, ao.learner));
+  const auto s = summarize_adaptation(rows);
+  std::string curve = "method,x,median,p10,p90\n";
+  for (std::size_t k = 0; k < s.putts.size(); ++k) {
+    curve += fmt::format("adapt (GPR prior),{},{},{},{}\n", s.putts[k], s.median[k], s.q10[k], s.q90[k]);
+    md["curves"] += fmt::format("| {} | {} | {:.0f} % | {:.0f}-{:.0f} % | {:.0f} % | {} | {} | {} of {} |\n", name,
+                                s.putts[k], 100 * s.median[k], 100 * s.q10[k], 100 * s.q90[k], 100 * s.worst[k],
+                                pct(s.of_ceiling_median[k]), pct(s.of_ceiling_worst[k]), s.plants_at_goal[k],
+                                rows.size());
+  }
+  write_file_atomic(opt.csv_path(name + "_adaptation_curve.csv"), curve);
+  opt.plot(fmt::format("learning-curve {} {} --xlabel {} --title {}", shell_quote(opt.csv_path(name + "_adaptation_curve.csv")),
+                       shell_quote(opt.fig_path(name + "_adaptation.png")), shell_quote("own putts on the plant (0: the nominal model)"),
+                       shell_quote(fmt::format("{}: success on {} test situations, median and 10-90 % over {} random plants", name,
+                                               ao.situations, rows.size()))));
+  md["figures"] += fmt::format("![{} adaptation](figures/{}_adaptation.png)\n", name, name);
+  opt.say(fmt::format("{}: adaptation curves over {} plants done", name, rows.size()));
+  return md;
+}
+
+}  // namespace mg::experiments

@@ -1,0 +1,40 @@
+#pragma once
+/// The "real-robot rows" of `minigolf reproduce` (issue 18; thesis table 6.5's real-robot rows):
+/// on the thesis's real-robot fields a documented plant (data/plants/real-wam.yaml) stands in for
+/// the real WAM. Rows: the nominal-simulator model on 10 test situations there, then the same
+/// model adapted by 10 of the robot's own putts (self-teach --prior), beside the plant's oracle
+/// ceiling; and the adaptation curves over random plants (experiments/adaptation.hpp).
+#include <functional>
+#include <map>
+#include <string>
+
+#include "control/module_config.hpp"
+#include "field/situations.hpp"
+#include "learning/learner.hpp"
+#include "plant/plant.hpp"
+
+namespace mg::experiments {
+
+struct RealRobotOptions {
+  bool quick = false;
+  int threads = 0;
+  std::uint64_t seed = 1;
+  plant::Plant plant;       ///< the stand-in for the real arm and lane
+  int attempts = 10;        ///< the thesis's real-robot attempt count
+  int adaptation_putts = 10;
+  /// The thesis's real-robot success ratio of (field, method), NaN if none.
+  std::function<double(const std::string&, const std::string&)> thesis;
+  std::function<std::string(const std::string&)> csv_path;
+  std::function<std::string(const std::string&)> fig_path;
+  std::function<void(const std::string&)> plot;
+  std::function<void(const std::string&)> say;
+};
+
+/// Markdown rows by table: "rows" (the table 6.5-like rows), "curves" (adaptation curves) and
+/// "figures". `models`: the nominal teacher-trained learners by method (gpr, gmr used).
+std::map<std::string, std::string> real_robot_rows(const control::ModuleConfig& config, const std::string& name,
+                                                   const field::Situations& region,
+                                                   const std::map<std::string, learning::Model>& models,
+                                                   const RealRobotOptions& options);
+
+}  // namespace mg::experiments

@@ -1,0 +1,206 @@
+#include "selfteach/planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/error.hpp"
+#include "selfteach/self_teach.hpp"
+
+namespace mg::selfteach {
+namespace {
+
+constexpr double kPseudoCover = 0.02;  ///< [m] a real label this close replaces a pseudo-label
+
+int output_index(const learning::Model& m, const char* name) {
+  for (int o = 0; o < m.num_outputs(); ++o)
+    if (m.output_names[static_cast<std::size_t>(o)] == name) return o;
+  return -1;
+}
+
+}  // namespace
+
+Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::string>& inputs,
+                          std::array<double, 2> hole) {
+  Eigen::VectorXd x(static_cast<Eigen::Index>(inputs.size()));
+  for (std::size_t c = 0; c < inputs.size(); ++c)
+    x(static_cast<Eigen::Index>(c)) = field::situation_input(field, inputs[c], hole);
+  return x;
+}
+
+std::optional<stats::GpHyperparameters> fixed_residual_hyper(const field::Situations& region, int inputs,
+                                                             int output, int labels) {
+  if (labels > kResidualLabelsToTune) return std::nullopt;
+  const auto b = region_bounds(region);
+  const double extent = std::max({b[1] - b[0], b[3] - b[2], 0.1});
+  stats::GpHyperparameters h;
+  h.length_scales = Eigen::VectorXd::Constant(inputs, extent);
+  h.signal_std = output == 0 ? 0.01 : 0.05;
+  h.noise_std = output == 0 ? 0.0015 : 0.01;
+  return h;
+}
+
+Planner::Planner(const system::System& system, const field::Situations& region, double arrival,
+                 std::uint64_t seed, std::shared_ptr<const learning::Model> prior)
+    : sys_(system), region_(region), inputs_(region.learner_inputs()), arrival_(arrival),
+      rng_(derive_seed(seed, 11)), prior_model_(std::move(prior)) {
+  outputs_ = region_.learn_speed ? 2 : 1;
+  if (prior_model_) {
+    const auto& m = *prior_model_;
+    inputs_ = m.input_names;
+    if (output_index(m, "angle") < 0)
+      throw InputError("prior model: expected an output 'angle'");
+    if (region_.learn_speed && output_index(m, "speed") < 0)
+      throw InputError("prior model: the region learns the club speed, the model has no output 'speed'");
+    for (const auto& name : inputs_) (void)field::situation_input(sys_.field(), name, sys_.field().hole.position);
+  }
+}
+
+std::vector<stats::GpHyperparameters> Planner::hyperparameters(const Eigen::MatrixXd& x, const Eigen::MatrixXd& r) {
+  const auto n = x.rows();
+  std::vector<stats::GpHyperparameters> out;
+  if (prior_model_) {
+    const auto b = region_bounds(region_);
+    const double extent = std::max({b[1] - b[0], b[3] - b[2], 0.1});
+    for (int o = 0; o < outputs_; ++o) {
+      if (auto h = fixed_residual_hyper(region_, static_cast<int>(x.cols()), o, static_cast<int>(n))) {
+        out.push_back(*h);
+        continue;
+      }
+      stats::GprOptions go;
+      go.restarts = 3;
+      go.initial_length_scales = Eigen::VectorXd::Constant(1, extent);
+      go.length_scale_bounds = {0.25 * extent, 20.0 * extent};
+      go.noise_std_bounds = {o == 0 ? 5e-4 : 3e-3, o == 0 ? 0.02 : 0.1};
+      out.push_back(stats::fit_gpr(x, r.col(o), rng_, go).hyper);
+    }
+    return out;
+  }
+  for (int o = 0; o < outputs_; ++o) {
+    stats::GprOptions go;
+    go.restarts = 3;
+    out.push_back(stats::fit_gpr(x, r.col(o), rng_, go).hyper);
+  }
+  return out;
+}
+
+void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> labels) {
+  const auto relation = launch_relation(putts);
+  bias_ = relation[0];
+  ratio_ = relation[1];
+  const std::size_t real = labels.size();
+  for (std::size_t i = 0; i < putts.size(); ++i) {
+    const auto& p = putts[i];
+    if (!p.hit) continue;
+    bool covered = false;
+    for (std::size_t k = 0; k < real && !covered; ++k)
+      covered = std::hypot(labels[k].hole[0] - p.target[0], labels[k].hole[1] - p.target[1]) < kPseudoCover;
+    if (!covered) labels.push_back(pseudo_label(p, static_cast<int>(i)));
+  }
+  gps_.clear();
+  if (labels.empty()) return;
+  const auto n = static_cast<Eigen::Index>(labels.size());
+  Eigen::MatrixXd x(n, static_cast<Eigen::Index>(inputs_.size()));
+  Eigen::MatrixXd r(n, outputs_);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Label& l = labels[static_cast<std::size_t>(i)];
+    x.row(i) = input_row(sys_.field(), inputs_, l.hole).transpose();
+    const auto [a0, v0] = prior(l.hole);
+    r(i, 0) = l.angle - a0;
+    if (outputs_ == 2) r(i, 1) = l.speed - v0;
+  }
+  // Hyperparameters are re-chosen when the label count has grown by a third (a model prior:
+  // every update while they are fixed); in between the last ones are reused (the GP is then
+  // rebuilt exactly, only not re-tuned).
+  const bool fixed_phase = prior_model_ && n <= kResidualLabelsToTune + 1;
+  const bool refit = fixed_phase || hyper_.empty() || n >= fitted_at_ + std::max<Eigen::Index>(1, fitted_at_ / 3);
+  if (refit) {
+    hyper_ = hyperparameters(x, r);
+    fitted_at_ = n;
+  }
+  for (int o = 0; o < outputs_; ++o)
+    gps_.push_back(stats::make_gp_model(x, r.col(o), hyper_[static_cast<std::size_t>(o)]));
+}
+
+Label Planner::pseudo_label(const PuttRecord& p, int index) const {
+  const auto& f = sys_.field();
+  const double distance = std::max(0.1, std::hypot(p.target[0] - f.tee[0], p.target[1] - f.tee[1]));
+  Label l;
+  l.hole = p.target;
+  l.angle = p.angle + std::clamp(p.approach_lateral / distance, -0.05, 0.05);
+  l.speed = p.speed;
+  l.putt = index;
+  if (region_.learn_speed) {
+    const double a_roll = 5.0 / 7.0 * f.rolling_resistance * 9.81;
+    const double e = p.approach_speed * p.approach_speed - 2.0 * a_roll * std::max(0.0, p.approach_along);
+    const double rolling_per_club = 5.0 / 7.0 * ratio_;  // ball rolling speed per club speed
+    const double v2 = p.speed * p.speed - (e - arrival_ * arrival_) / (rolling_per_club * rolling_per_club);
+    l.speed = std::clamp(std::sqrt(std::max(v2, 0.0)), 0.7 * p.speed, 1.3 * p.speed);
+  }
+  l.arrival_speed = arrival_;
+  return l;
+}
+
+std::array<double, 2> Planner::prior(std::array<double, 2> hole) const {
+  if (!prior_model_) return prior_club(sys_.field(), region_, hole, arrival_, bias_, ratio_);
+  const auto& m = *prior_model_;
+  const Eigen::MatrixXd q = input_row(sys_.field(), inputs_, hole).transpose();
+  const learning::Predictions p = learning::predict(m, q);
+  const int ia = output_index(m, "angle"), is = output_index(m, "speed");
+  double v = region_.speed;
+  if (is >= 0) v = p.mean(0, is);
+  else if (const double* fixed = m.fixed_value("speed")) v = *fixed;
+  return {p.mean(0, ia), v};
+}
+
+std::array<double, 3> Planner::plan(std::array<double, 2> hole) const {
+  auto [a, v] = prior(hole);
+  double score = 1.0;
+  if (!gps_.empty()) {
+    const Eigen::VectorXd x = input_row(sys_.field(), inputs_, hole);
+    const auto pa = stats::gp_predict(gps_[0], x);
+    a += pa.mean;
+    score = std::sqrt(pa.latent_variance) / kWindowAngle;
+    if (gps_.size() > 1) {
+      const auto pv = stats::gp_predict(gps_[1], x);
+      v += pv.mean;
+      score = std::max(score, std::sqrt(pv.latent_variance) / kWindowSpeed);
+    }
+  }
+  const auto& c = sys_.config();
+  a = std::clamp(a, c.angle_min + 1e-6, c.angle_max - 1e-6);
+  if (region_.learn_speed || prior_model_) v = std::clamp(v, c.speed_min, c.speed_max);
+  return {a, v, score};
+}
+
+learning::Model Planner::residual_model() const {
+  if (!prior_model_) throw InputError("residual model: needs a prior model");
+  const auto& m = *prior_model_;
+  if (gps_.empty()) return m;  // nothing learned yet: the prior as it is
+  learning::Model out;
+  out.method = learning::Method::kGpr;
+  out.input_names = m.input_names;
+  out.output_names = m.output_names;
+  out.seed = m.seed;
+  out.fixed = m.fixed;
+  out.prior = prior_model_;
+  for (int o = 0; o < m.num_outputs(); ++o) {
+    const std::string& name = m.output_names[static_cast<std::size_t>(o)];
+    stats::GpModel gp;
+    if (name == "angle") gp = gps_[0];
+    else if (name == "speed" && gps_.size() > 1) gp = gps_[1];
+    else  // an output the labels do not correct: a zero residual
+      gp = stats::make_gp_model(gps_[0].inputs, Eigen::VectorXd::Zero(gps_[0].size()), gps_[0].hyper);
+    learning::FitReport rep;
+    rep.length_scales = gp.hyper.length_scales;
+    rep.signal_std = gp.hyper.signal_std;
+    rep.noise_std = gp.hyper.noise_std;
+    rep.log_marginal_likelihood = gp.log_marginal_likelihood;
+    out.reports.push_back(rep);
+    out.gps.push_back(std::move(gp));
+  }
+  return out;
+}
+
+}  // namespace mg::selfteach
