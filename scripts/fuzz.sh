@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 runs="${1:-1000000}"
 shift || true
 all=(field_yaml heightmap_csv heightmap_png dataset_csv learner_json hitting_json demos_csv module_config
-     console_line vision_datagram)
+     console_line vision_datagram plant_yaml)
 harnesses=("${@:-${all[@]}}")
 if [[ $# -eq 0 ]]; then harnesses=("${all[@]}"); fi
 

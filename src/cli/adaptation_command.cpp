@@ -36,7 +36,7 @@ void add_adaptation_command(CLI::App& app) {
   cmd->add_option("--config", a->config, "Module config YAML");
   cmd->add_option("--hitting-model", a->hitting_model, "Hitting DS model file (default: the shipped one)");
   cmd->add_option("--model", a->model, "The nominal learner model (trained in the robot's own model of the world)")->required();
-  cmd->add_option("--plants", a->o.plants, "Random plants (plant random --seed derive(plant-seed, k))")->capture_default_str();
+  cmd->add_option("--plants", a->o.plants, "Random plants: plant k is `plant random --seed PLANT_SEED+k`")->capture_default_str();
   cmd->add_option("--plant-seed", a->o.plant_seed, "Seed of the plants")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--plant", a->plants_given, "Plant files instead of random plants (repeatable)");
   cmd->add_option("--checkpoints", a->checkpoints, "Adaptation putts, increasing (0: the nominal model)")->capture_default_str();

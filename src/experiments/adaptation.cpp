@@ -51,7 +51,7 @@ std::vector<PlantAdaptation> adaptation_study(const control::ModuleConfig& confi
   std::vector<plant::Plant> plants = options.given;
   if (plants.empty())
     for (int k = 0; k < options.plants; ++k)
-      plants.push_back(plant::random_plant(derive_seed(options.plant_seed, static_cast<std::uint64_t>(k))));
+      plants.push_back(plant::random_plant(options.plant_seed + static_cast<std::uint64_t>(k)));
   const system::System nominal(config, belief);
   // Per plant: [oracle_found, sunk at each checkpoint...] (system/wire.hpp sends int vectors).
   std::vector<std::vector<int>> results(plants.size());

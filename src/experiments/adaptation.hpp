@@ -18,7 +18,7 @@
 namespace mg::experiments {
 
 struct AdaptationOptions {
-  int plants = 10;                        ///< plant::random_plant(derive_seed(plant_seed, k))
+  int plants = 10;                        ///< plant k: plant::random_plant(plant_seed + k) (`plant random --seed`)
   std::uint64_t plant_seed = 1;
   std::vector<int> checkpoints{0, 1, 2, 3, 5, 10};  ///< adaptation putts (0: the nominal model)
   int situations = 100;                   ///< test situations per checkpoint

@@ -216,10 +216,10 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
     out.labels_added.push_back(added);
     if (std::find(options.learn_checkpoints.begin(), options.learn_checkpoints.end(), i + 1) !=
         options.learn_checkpoints.end())
-      out.checkpoint_models.emplace_back(i + 1, planner.residual_model());
+      out.checkpoint_models.emplace_back(i + 1, planner.residual_model(labels, -1));
     if (progress) progress(i + 1, n);
   }
-  out.learned = planner.residual_model();
+  out.learned = planner.residual_model(labels, -1);
   for (const auto& r : e.rows) e.sunk += r.sunk;
   e.success_ratio = static_cast<double>(e.sunk) / n;
   e.ci95 = wilson_interval(e.sunk, n);

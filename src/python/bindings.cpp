@@ -123,6 +123,7 @@ struct PuttResult {
   sim::PuttOutcome outcome;
   control::AngleSpeed club, launch;
   control::CoreTiming timing;
+  std::string plant_path, plant_hash;  ///< empty: no plant file
 };
 
 py::dict putt_dict(const PuttResult& r) {
@@ -138,6 +139,13 @@ py::dict putt_dict(const PuttResult& r) {
   d["closest_approach"] = o.closest_approach;
   d["duration"] = o.duration;
   d["steps"] = o.steps;
+  if (r.plant_path.empty()) {
+    d["plant"] = py::none();
+  } else {
+    py::dict plant;
+    plant["path"] = r.plant_path, plant["hash"] = r.plant_hash;
+    d["plant"] = plant;
+  }
   if (!r.ball_only) {
     py::dict club, launch, timing;
     club["angle"] = r.club.angle, club["speed"] = r.club.speed;
@@ -159,6 +167,8 @@ PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle,
   r.angle = angle;
   r.speed = speed;
   r.hole = hole_opt ? *hole_opt : sys.field().hole.position;
+  r.plant_path = sys.plant().source;
+  r.plant_hash = sys.plant().hash;
   Lease lease(pdata);
   std::optional<system::SystemData> local;
   py::gil_scoped_release release;

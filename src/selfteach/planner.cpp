@@ -90,13 +90,35 @@ void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> la
   bias_ = relation[0];
   ratio_ = relation[1];
   const std::size_t real = labels.size();
+  sunk_.clear();
+  for (std::size_t i = 0; i < putts.size(); ++i) {
+    const auto& p = putts[i];
+    if (p.hit && p.sunk) {
+      Label l;
+      l.hole = p.target;
+      l.angle = p.angle;
+      l.speed = p.speed;
+      l.arrival_speed = arrival_;
+      l.putt = static_cast<int>(i);
+      sunk_.push_back(l);
+    }
+  }
   for (std::size_t i = 0; i < putts.size(); ++i) {
     const auto& p = putts[i];
     if (!p.hit) continue;
     bool covered = false;
     for (std::size_t k = 0; k < real && !covered; ++k)
       covered = std::hypot(labels[k].hole[0] - p.target[0], labels[k].hole[1] - p.target[1]) < kPseudoCover;
-    if (!covered) labels.push_back(pseudo_label(p, static_cast<int>(i)));
+    if (covered) continue;
+    // With a model prior a putt that sank is moved by its Newton step towards the middle of the
+    // window by at most the window's scale: the cup spoils its path (a fast ball that drops in
+    // asks for a large step), and the prior is already close.
+    Label l = pseudo_label(p, static_cast<int>(i));
+    if (prior_model_ && p.sunk) {
+      l.angle = std::clamp(l.angle, p.angle - kWindowAngle, p.angle + kWindowAngle);
+      l.speed = std::clamp(l.speed, p.speed - kWindowSpeed, p.speed + kWindowSpeed);
+    }
+    labels.push_back(l);
   }
   gps_.clear();
   if (labels.empty()) return;
@@ -113,7 +135,7 @@ void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> la
   // Hyperparameters are re-chosen when the label count has grown by a third (a model prior:
   // every update while they are fixed); in between the last ones are reused (the GP is then
   // rebuilt exactly, only not re-tuned).
-  const bool fixed_phase = prior_model_ && n <= kResidualLabelsToTune + 1;
+  const bool fixed_phase = prior_model_ && fixed_residual_hyper(region_, 1, 0, static_cast<int>(n) - 1).has_value();
   const bool refit = fixed_phase || hyper_.empty() || n >= fitted_at_ + std::max<Eigen::Index>(1, fitted_at_ / 3);
   if (refit) {
     hyper_ = hyperparameters(x, r);
@@ -174,10 +196,25 @@ std::array<double, 3> Planner::plan(std::array<double, 2> hole) const {
   return {a, v, score};
 }
 
-learning::Model Planner::residual_model() const {
+learning::Model Planner::residual_model(const std::vector<Label>& labels, int putts) const {
   if (!prior_model_) throw InputError("residual model: needs a prior model");
   const auto& m = *prior_model_;
-  if (gps_.empty()) return m;  // nothing learned yet: the prior as it is
+  std::vector<Label> use;
+  for (const auto& l : labels)
+    if (putts < 0 || l.putt < putts) use.push_back(l);
+  const std::size_t real = use.size();
+  for (const auto& l : sunk_) {
+    if (putts >= 0 && l.putt >= putts) continue;
+    bool covered = false;
+    for (std::size_t k = 0; k < real && !covered; ++k)
+      covered = std::hypot(use[k].hole[0] - l.hole[0], use[k].hole[1] - l.hole[1]) < kPseudoCover;
+    if (!covered) use.push_back(l);
+  }
+  if (use.empty()) return m;  // nothing known yet: the prior as it is
+  const auto n = static_cast<Eigen::Index>(use.size());
+  Eigen::MatrixXd x(n, static_cast<Eigen::Index>(inputs_.size()));
+  for (Eigen::Index i = 0; i < n; ++i) x.row(i) = input_row(sys_.field(), inputs_, use[static_cast<std::size_t>(i)].hole).transpose();
+  const learning::Predictions base = learning::predict(m, x);
   learning::Model out;
   out.method = learning::Method::kGpr;
   out.input_names = m.input_names;
@@ -185,13 +222,31 @@ learning::Model Planner::residual_model() const {
   out.seed = m.seed;
   out.fixed = m.fixed;
   out.prior = prior_model_;
+  Rng rng(derive_seed(m.seed, 29));
+  const auto b = region_bounds(region_);
+  const double extent = std::max({b[1] - b[0], b[3] - b[2], 0.1});
   for (int o = 0; o < m.num_outputs(); ++o) {
     const std::string& name = m.output_names[static_cast<std::size_t>(o)];
+    const int kind = name == "angle" ? 0 : 1;
+    // An output the labels do not correct (the speed of an angle-only region): a zero residual.
+    const bool learned = name == "angle" || (name == "speed" && region_.learn_speed);
+    Eigen::VectorXd r = Eigen::VectorXd::Zero(n);
+    if (learned)
+      for (Eigen::Index i = 0; i < n; ++i) {
+        const Label& l = use[static_cast<std::size_t>(i)];
+        r(i) = (kind == 0 ? l.angle : l.speed) - base.mean(i, o);
+      }
     stats::GpModel gp;
-    if (name == "angle") gp = gps_[0];
-    else if (name == "speed" && gps_.size() > 1) gp = gps_[1];
-    else  // an output the labels do not correct: a zero residual
-      gp = stats::make_gp_model(gps_[0].inputs, Eigen::VectorXd::Zero(gps_[0].size()), gps_[0].hyper);
+    if (auto h = fixed_residual_hyper(region_, static_cast<int>(x.cols()), kind, static_cast<int>(n))) {
+      gp = stats::make_gp_model(x, r, *h);
+    } else {
+      stats::GprOptions go;
+      go.restarts = 3;
+      go.initial_length_scales = Eigen::VectorXd::Constant(1, extent);
+      go.length_scale_bounds = {0.25 * extent, 20.0 * extent};
+      go.noise_std_bounds = {kind == 0 ? 5e-4 : 3e-3, kind == 0 ? 0.02 : 0.1};
+      gp = stats::fit_gpr(x, r, rng, go);
+    }
     learning::FitReport rep;
     rep.length_scales = gp.hyper.length_scales;
     rep.signal_std = gp.hyper.signal_std;

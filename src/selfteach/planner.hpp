@@ -72,10 +72,12 @@ class Planner {
   /// The putt for a hole, inside the module's envelope, and its uncertainty in window units.
   std::array<double, 3> plan(std::array<double, 2> hole) const;
 
-  /// The residual model over the prior model as the planner stands (its residual GPs: the
-  /// hindsight labels and the pseudo-labels of the last update); the prior itself before any
-  /// update. Needs a model prior; throws InputError otherwise.
-  learning::Model residual_model() const;
+  /// The residual model over the prior model from what the robot knows for sure after its first
+  /// `putts` putts (all for a negative value): the hindsight `labels` and its putts that sank
+  /// (each a label at its own target, where no hindsight label lies within 2 cm), not the
+  /// planning-only pseudo-labels; with this planner's hyperparameter policy. The prior itself
+  /// while there is none. Needs a model prior; throws InputError otherwise.
+  learning::Model residual_model(const std::vector<Label>& labels, int putts) const;
 
   bool has_model_prior() const { return prior_model_ != nullptr; }
   const std::vector<std::string>& inputs() const { return inputs_; }
@@ -95,6 +97,7 @@ class Planner {
   std::vector<stats::GpHyperparameters> hyper_;
   Eigen::Index fitted_at_ = 0;
   std::vector<stats::GpModel> gps_;
+  std::vector<Label> sunk_;  ///< the putts that sank, as labels at their targets (last update)
 };
 
 }  // namespace mg::selfteach

@@ -155,8 +155,7 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
   Planner planner(system, region, rules.arrival_speed, options.seed, options.prior);
   // With a prior model the result is a residual over it (real labels only); else GPR on labels.
   const auto learned = [&](int putts) {
-    // (the planner stands at `putts` putts when a checkpoint is taken: batches end there)
-    return planner.has_model_prior() ? planner.residual_model()
+    return planner.has_model_prior() ? planner.residual_model(res.labels, putts)
                                      : model_from_labels(system, region, res.labels, putts, options.seed);
   };
   const auto candidates = candidate_targets(region, options.candidates, options.seed);

@@ -45,10 +45,18 @@ TEST(LearningWhilePlaying, OutcomesJoinTheModelAndItImproves) {
   // The same inputs give the same bits.
   const LearningEvaluation again = evaluate_learning(hill(), start, region, o);
   EXPECT_EQ(learning::model_to_json(again.learned).dump(), learning::model_to_json(learned.learned).dump());
-  // Only GPR keeps its data.
+  // The residual way keeps the start as its prior; appending needs a GPR's own data.
+  ASSERT_TRUE(learned.learned.prior);
+  EXPECT_EQ(learning::model_to_json(*learned.learned.prior).dump(), learning::model_to_json(start).dump());
+  EvaluateOptions append = o;
+  append.learn = LearnMode::kAppend;
   learning::Model gmr = start;
   gmr.method = learning::Method::kGmr;
-  EXPECT_THROW(evaluate_learning(hill(), gmr, region, o), InputError);
+  EXPECT_THROW(evaluate_learning(hill(), gmr, region, append), InputError);
+  EXPECT_THROW(evaluate_learning(hill(), learned.learned, region, append), InputError);  // a residual model
+  const LearningEvaluation appended = evaluate_learning(hill(), start, region, append);
+  EXPECT_GT(appended.learned.gps[0].size(), start.gps[0].size());
+  EXPECT_FALSE(appended.learned.prior);
 }
 
 TEST(Noise, ZeroNoiseChangesNothingAndNoiseIsSeeded) {

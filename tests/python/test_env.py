@@ -149,6 +149,21 @@ def test_observation_action_and_reward():
     assert obs[2] == 1.0
 
 
+def test_a_plant_is_the_world_the_episodes_happen_in(tmp_path):
+    plant = tmp_path / "slow.yaml"
+    plant.write_text("field:\n  rolling_resistance_scale: 1.2\n")
+    real = PuttEnv(field="flat", mode="ball", plant=str(plant))
+    nominal = PuttEnv(field="flat", mode="ball")
+    a = np.array([0.0, 2.4])
+    real.reset(seed=1), nominal.reset(seed=1)
+    _, _, _, _, ir = real.step(a)
+    _, _, _, _, inom = nominal.step(a)
+    assert ir["hole"] == inom["hole"]  # the robot sees the same situation
+    assert ir["closest_approach"] != inom["closest_approach"]  # the ball rolls in another world
+    with pytest.raises(ValueError, match="plant"):
+        PuttEnv(field="flat", mode="ball", plant=str(tmp_path / "missing.yaml"))
+
+
 def test_reproducible_with_a_seed():
     def episodes(seed):
         env = PuttEnv(field="regular-hill", mode="ball")

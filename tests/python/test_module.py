@@ -239,3 +239,20 @@ def test_collect_equals_the_cli_file(flat, tmp_path):
     examples = flat.collect(str(tmp_path / "py.csv"), situations=spec, max_full_putts=12)
     assert (tmp_path / "py.csv").read_bytes() == (tmp_path / "cli.csv").read_bytes()
     assert [list(e.hole) for e in examples] == [[1.9, 0.05], [2.0, -0.05]]
+
+
+def test_a_plant_is_the_world_and_equals_the_cli(tmp_path):
+    plant = tmp_path / "slow.yaml"
+    plant.write_text("field:\n  rolling_resistance_scale: 1.2\n")
+    real = minigolf.System(field="flat", plant=str(plant))
+    assert real.plant["path"] == str(plant) and len(real.plant["hash"]) == 16
+    assert minigolf.System(field="flat").plant is None
+    ours = as_json(real.putt(0.0, 2.4, ball_only=True, record_interval=0.0).to_dict())
+    theirs = json.loads(cli("putt", "--field", "flat", "--angle", "0.0", "--speed", "2.4", "--ball-only",
+                            "--json", "--plant", str(plant)).stdout)
+    assert ours == theirs
+    nominal = minigolf.System(field="flat").putt(0.0, 2.4, ball_only=True).to_dict()
+    assert ours["rest_position"][0] < nominal["rest_position"][0] - 0.05  # slower grass: shorter roll
+    (tmp_path / "bad.yaml").write_text("arm:\n  club_speed_scale: 9\n")
+    with pytest.raises(ValueError, match="arm.club_speed_scale"):
+        minigolf.System(field="flat", plant=str(tmp_path / "bad.yaml"))
