@@ -174,12 +174,12 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
   const plant::Plant run_plant = opt.plant.empty() ? plant::Plant{} : plant::load_plant(opt.plant);
   const plant::Plant real_plant = plant::load_plant(
       opt.real_robot_plant.empty() ? (data_dir() / "plants" / "real-wam.yaml").string() : opt.real_robot_plant);
-  run_json["plant"] = run_plant.source.empty() ? nlohmann::json()
-                                               : nlohmann::json{{"path", run_plant.source}, {"hash", run_plant.hash}};
   std::vector<std::vector<double>> mse_rows;
   std::string success_csv = "field,method,situations,sunk,success_ratio,ci_lo,ci_hi,oracle_ceiling,thesis_ratio\n";
   nlohmann::json run_json = {{"seed", opt.seed}, {"quick", opt.quick}, {"revision", opt.revision},
                              {"threads", system::thread_count(opt.threads)}, {"fields", nlohmann::json::array()}};
+  run_json["plant"] = run_plant.source.empty() ? nlohmann::json()
+                                               : nlohmann::json{{"path", run_plant.source}, {"hash", run_plant.hash}};
   const auto plot = [&](const std::string& args) {
     if (!opt.plots || !system::is_root_process()) return;  // one process draws (MPI)
     const fs::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";
