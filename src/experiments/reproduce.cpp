@@ -57,24 +57,15 @@ struct Thesis {
     const YAML::Node o = f[output] ? f[output] : f["simulator_" + output];
     return o && o.IsMap() && o[m] ? o[m].as<double>() : NAN;
   }
-  /// Success ratio of (field, method) in the simulator, or NaN.
-  double success(const std::string& field, const std::string& method) const {
+  /// Success ratio of (field, method) `where` ("simulator" | "real_robot"), or NaN.
+  double success(const std::string& field, const std::string& method, const char* where = "simulator") const {
     std::string m = method;
     std::replace(m.begin(), m.end(), '-', '_');
     const YAML::Node s = root["success"];
     if (!s || !s.IsMap() || !s[key(field)]) return NAN;
     const YAML::Node f = s[key(field)];
-    if (!f["simulator"] || !f["simulator"][m]) return NAN;
-    const YAML::Node c = f["simulator"][m];
-    return c[1].as<double>() / c[0].as<double>();
-  }
-  /// Success ratio of (field, method) on the real robot, or NaN.
-  double real_success(const std::string& field, const std::string& method) const {
-    const YAML::Node s = root["success"];
-    if (!s || !s.IsMap() || !s[key(field)]) return NAN;
-    const YAML::Node f = s[key(field)];
-    if (!f["real_robot"] || !f["real_robot"][method]) return NAN;
-    const YAML::Node c = f["real_robot"][method];
+    if (!f[where] || !f[where][m]) return NAN;
+    const YAML::Node c = f[where][m];
     return c[1].as<double>() / c[0].as<double>();
   }
 };
@@ -430,7 +421,7 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
       ro.threads = opt.threads;
       ro.seed = opt.seed;
       ro.plant = real_plant;
-      ro.thesis = [&](const std::string& fl, const std::string& m) { return thesis.real_success(fl, m); };
+      ro.thesis = [&](const std::string& fl, const std::string& m) { return thesis.success(fl, m, "real_robot"); };
       ro.csv_path = csv_path;
       ro.fig_path = fig_path;
       ro.plot = plot;

@@ -41,6 +41,23 @@ std::optional<stats::GpHyperparameters> fixed_residual_hyper(const field::Situat
   return h;
 }
 
+/// The residual GP on (x, r) for output kind 0 (angle) or 1 (speed) with `labels` rows: the fixed
+/// hyperparameters while they apply, else fitted with length scales of at least a quarter of the
+/// region's extent.
+stats::GpModel residual_gp(const field::Situations& region, const Eigen::MatrixXd& x, const Eigen::VectorXd& r,
+                           int kind, Rng& rng) {
+  if (auto h = fixed_residual_hyper(region, static_cast<int>(x.cols()), kind, static_cast<int>(x.rows())))
+    return stats::make_gp_model(x, r, *h);
+  const auto b = region_bounds(region);
+  const double extent = std::max({b[1] - b[0], b[3] - b[2], 0.1});
+  stats::GprOptions go;
+  go.restarts = 3;
+  go.initial_length_scales = Eigen::VectorXd::Constant(1, extent);
+  go.length_scale_bounds = {0.25 * extent, 20.0 * extent};
+  go.noise_std_bounds = {kind == 0 ? 5e-4 : 3e-3, kind == 0 ? 0.02 : 0.1};
+  return stats::fit_gpr(x, r, rng, go);
+}
+
 Planner::Planner(const system::System& system, const field::Situations& region, double arrival,
                  std::uint64_t seed, std::shared_ptr<const learning::Model> prior)
     : sys_(system), region_(region), inputs_(region.learner_inputs()), arrival_(arrival),
@@ -58,23 +75,9 @@ Planner::Planner(const system::System& system, const field::Situations& region, 
 }
 
 std::vector<stats::GpHyperparameters> Planner::hyperparameters(const Eigen::MatrixXd& x, const Eigen::MatrixXd& r) {
-  const auto n = x.rows();
   std::vector<stats::GpHyperparameters> out;
   if (prior_model_) {
-    const auto b = region_bounds(region_);
-    const double extent = std::max({b[1] - b[0], b[3] - b[2], 0.1});
-    for (int o = 0; o < outputs_; ++o) {
-      if (auto h = fixed_residual_hyper(region_, static_cast<int>(x.cols()), o, static_cast<int>(n))) {
-        out.push_back(*h);
-        continue;
-      }
-      stats::GprOptions go;
-      go.restarts = 3;
-      go.initial_length_scales = Eigen::VectorXd::Constant(1, extent);
-      go.length_scale_bounds = {0.25 * extent, 20.0 * extent};
-      go.noise_std_bounds = {o == 0 ? 5e-4 : 3e-3, o == 0 ? 0.02 : 0.1};
-      out.push_back(stats::fit_gpr(x, r.col(o), rng_, go).hyper);
-    }
+    for (int o = 0; o < outputs_; ++o) out.push_back(residual_gp(region_, x, r.col(o), o, rng_).hyper);
     return out;
   }
   for (int o = 0; o < outputs_; ++o) {
@@ -223,8 +226,6 @@ learning::Model Planner::residual_model(const std::vector<Label>& labels, int pu
   out.fixed = m.fixed;
   out.prior = prior_model_;
   Rng rng(derive_seed(m.seed, 29));
-  const auto b = region_bounds(region_);
-  const double extent = std::max({b[1] - b[0], b[3] - b[2], 0.1});
   for (int o = 0; o < m.num_outputs(); ++o) {
     const std::string& name = m.output_names[static_cast<std::size_t>(o)];
     const int kind = name == "angle" ? 0 : 1;
@@ -236,17 +237,7 @@ learning::Model Planner::residual_model(const std::vector<Label>& labels, int pu
         const Label& l = use[static_cast<std::size_t>(i)];
         r(i) = (kind == 0 ? l.angle : l.speed) - base.mean(i, o);
       }
-    stats::GpModel gp;
-    if (auto h = fixed_residual_hyper(region_, static_cast<int>(x.cols()), kind, static_cast<int>(n))) {
-      gp = stats::make_gp_model(x, r, *h);
-    } else {
-      stats::GprOptions go;
-      go.restarts = 3;
-      go.initial_length_scales = Eigen::VectorXd::Constant(1, extent);
-      go.length_scale_bounds = {0.25 * extent, 20.0 * extent};
-      go.noise_std_bounds = {kind == 0 ? 5e-4 : 3e-3, kind == 0 ? 0.02 : 0.1};
-      gp = stats::fit_gpr(x, r, rng, go);
-    }
+    stats::GpModel gp = residual_gp(region_, x, r, kind, rng);
     learning::FitReport rep;
     rep.length_scales = gp.hyper.length_scales;
     rep.signal_std = gp.hyper.signal_std;
