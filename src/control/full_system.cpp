@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "core/check.hpp"
 #include "core/error.hpp"
 
 #include "core/rng.hpp"
@@ -389,13 +390,29 @@ void turn_ball(const sim::World& world, mjData* d, double angle) {
 
 }  // namespace
 
+void FullPuttOptions::validate() const {
+  // The same bound as a ball-only putt's: simulated time is CPU time, and beyond it a double no
+  // longer counts 1 ms steps exactly.
+  require_in_range("max_duration", max_duration, 0.01, 600.0);
+  require_in_range("settle_timeout", settle_timeout, 0.01, 600.0);
+  require_in_range("hit_timeout", hit_timeout, 0.01, 600.0);
+  require_in_range("launch_delay", launch_delay, 0.0, 1.0);
+  require_in_range("record_interval", record_interval, 0.0, 10.0);
+  require_in_range("torque_noise", torque_noise, 0.0, 1.0);
+  require_in_range("placement_noise", placement_noise, 0.0, 0.1);
+  require_in_range("launch_angle_bias", launch_angle_bias, -0.5, 0.5);
+  require_in_range("club_speed_scale", club_speed_scale, 0.1, 10.0);
+  require_in_range("perception_latency", perception_latency, 0.0, 1.0);
+  require_in_range("perceived_ball_offset.x", perceived_ball_offset[0], -1.0, 1.0);
+  require_in_range("perceived_ball_offset.y", perceived_ball_offset[1], -1.0, 1.0);
+}
+
 FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
                                 std::array<double, 2> hole, double angle, double speed,
                                 const FullPuttOptions& options, PuttScratch* scratch) {
   const sim::World* ball_world = options.ball_world;
   if (ball_world != nullptr) check_ball_world(world, *ball_world);
-  if (!(options.record_interval >= 0.0 && options.record_interval <= 10.0))
-    throw InputError(fmt::format("record_interval: expected 0..10 s, got {}", options.record_interval));
+  options.validate();
   std::unique_ptr<PuttScratch> local;
   if (scratch == nullptr) {
     local = std::make_unique<PuttScratch>();

@@ -143,6 +143,10 @@ struct FullPuttOptions {
   double perception_latency = 0.0;
   /// [m] The module perceives the ball moved by this for the whole putt (the vision's error).
   std::array<double, 2> perceived_ball_offset{0.0, 0.0};
+
+  /// Throws `InputError` naming the first value out of its documented range (max_duration at
+  /// most 600 s, as a ball-only putt).
+  void validate() const;
 };
 
 /// Angle [rad] (atan2 of the horizontal components) and speed [m/s] of a velocity.

@@ -11,6 +11,9 @@
 #include <sstream>
 #include <system_error>
 
+#include <climits>
+#include <sys/stat.h>
+
 #include <fmt/format.h>
 #include <pthread.h>
 #include <unistd.h>
@@ -19,17 +22,104 @@
 
 namespace mg {
 
-std::string read_text_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw IoError(fmt::format("{}: no such file", path.string()));
-  if (std::filesystem::is_directory(path, ec))
-    throw IoError(fmt::format("{}: is a directory, expected a file", path.string()));
+namespace {
+
+std::string file_kind(std::filesystem::file_type t) {
+  using std::filesystem::file_type;
+  switch (t) {
+    case file_type::directory: return "a directory";
+    case file_type::symlink: return "a symbolic link";
+    case file_type::fifo: return "a FIFO";
+    case file_type::socket: return "a socket";
+    case file_type::block:
+    case file_type::character: return "a device";
+    default: return "not a regular file";
+  }
+}
+
+std::string errno_text(int err) {
+  if (err == ENAMETOOLONG) return "file name too long";
+  if (err == ENOENT || err == ENOTDIR) return "no such file";
+  return std::strerror(err);
+}
+
+}  // namespace
+
+std::string shown_path(const std::filesystem::path& path) {
+  const std::string& s = path.native();
+  constexpr std::size_t kMax = 160;
+  if (s.size() <= kMax) return s;
+  return fmt::format("{}...{} ({} characters)", s.substr(0, 60), s.substr(s.size() - 60), s.size());
+}
+
+std::uintmax_t check_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
+  if (S_ISDIR(st.st_mode)) throw IoError(fmt::format("{}: is a directory, expected a file", shown_path(path)));
+  if (!S_ISREG(st.st_mode)) {
+    const auto type = std::filesystem::status(path).type();
+    throw IoError(fmt::format("{}: is {}; input files must be regular files", shown_path(path), file_kind(type)));
+  }
+  const auto size = static_cast<std::uintmax_t>(st.st_size);
+  if (size > max_bytes)
+    throw IoError(fmt::format("{}: is {} bytes; input files are limited to {} MiB", shown_path(path), size,
+                              max_bytes >> 20));
+  return size;
+}
+
+std::string read_text_file(const std::filesystem::path& path, std::uintmax_t max_bytes) {
+  check_input_file(path, max_bytes);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(fmt::format("{}: cannot open for reading", path.string()));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw IoError(fmt::format("{}: read failed", path.string()));
-  return buffer.str();
+  if (!in) throw IoError(fmt::format("{}: cannot open for reading", shown_path(path)));
+  std::string text;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_bytes)  // it grew while we read
+      throw IoError(fmt::format("{}: grew past {} MiB while being read", shown_path(path), max_bytes >> 20));
+  }
+  if (in.bad()) throw IoError(fmt::format("{}: read failed", shown_path(path)));
+  return text;
+}
+
+void check_output_file(const std::filesystem::path& path) {
+  if (path.empty()) throw IoError("output: expected a file name, got ''");
+  if (path.native().size() >= PATH_MAX) throw IoError(fmt::format("{}: file name too long", shown_path(path)));
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) {
+    if (!S_ISREG(st.st_mode))
+      throw IoError(fmt::format("{}: is {}; refusing to replace it (write to a regular file)", shown_path(path),
+                                file_kind(std::filesystem::symlink_status(path).type())));
+  } else if (errno != ENOENT) {
+    throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
+  }
+  std::filesystem::path folder = path.parent_path();
+  if (folder.empty()) folder = ".";
+  struct stat dst {};
+  if (::stat(folder.c_str(), &dst) != 0)
+    throw IoError(fmt::format("{}: output folder '{}' does not exist", shown_path(path), shown_path(folder)));
+  if (!S_ISDIR(dst.st_mode))
+    throw IoError(fmt::format("{}: '{}' is not a folder", shown_path(path), shown_path(folder)));
+  if (::access(folder.c_str(), W_OK | X_OK) != 0)
+    throw IoError(fmt::format("{}: output folder '{}' is not writable ({})", shown_path(path), shown_path(folder),
+                              std::strerror(errno)));
+}
+
+void ensure_output_dir(const std::filesystem::path& path) {
+  if (path.empty()) throw IoError("output folder: expected a name, got ''");
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0) {
+    if (!S_ISDIR(st.st_mode))
+      throw IoError(fmt::format("{}: is {}, expected a folder", shown_path(path),
+                                file_kind(std::filesystem::symlink_status(path).type())));
+  } else {
+    if (errno != ENOENT) throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
+    std::error_code ec;
+    std::filesystem::create_directories(path, ec);
+    if (ec) throw IoError(fmt::format("{}: cannot make the folder: {}", shown_path(path), ec.message()));
+  }
+  if (::access(path.c_str(), W_OK | X_OK) != 0)
+    throw IoError(fmt::format("{}: folder is not writable ({})", shown_path(path), std::strerror(errno)));
 }
 
 namespace {
@@ -114,19 +204,6 @@ void unregister_temp(int slot) {
   if (slot >= 0) g_temp_slots[slot].used.store(false);
 }
 
-std::string file_kind(std::filesystem::file_type t) {
-  using std::filesystem::file_type;
-  switch (t) {
-    case file_type::directory: return "a directory";
-    case file_type::symlink: return "a symbolic link";
-    case file_type::fifo: return "a FIFO";
-    case file_type::socket: return "a socket";
-    case file_type::block:
-    case file_type::character: return "a device";
-    default: return "not a regular file";
-  }
-}
-
 }  // namespace
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view content) {
@@ -134,7 +211,7 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
   std::error_code st_ec;
   const auto st = std::filesystem::symlink_status(path, st_ec);
   if (!st_ec && std::filesystem::exists(st) && st.type() != std::filesystem::file_type::regular)
-    throw IoError(fmt::format("{}: is {}; refusing to replace it (write to a regular file)", path.string(),
+    throw IoError(fmt::format("{}: is {}; refusing to replace it (write to a regular file)", shown_path(path),
                               file_kind(st.type())));
   static std::atomic<unsigned> counter{0};
   const std::filesystem::path tmp =

@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 #include <mujoco/mujoco.h>
 
+#include "core/check.hpp"
 #include "core/error.hpp"
 #include "ds/hitting_ds.hpp"
 #include "ds/hitting_model.hpp"
@@ -188,8 +189,7 @@ PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle,
   }
   // as `minigolf putt` (the arm)
   sys.check_request(angle, speed, "putt");
-  if (!std::isfinite(max_duration) || max_duration <= 0.0)
-    throw InputError(fmt::format("putt: --max-duration: expected > 0 s, got {}", max_duration));
+  require_in_range("putt: max_duration [s]", max_duration, 0.01, 600.0);
   control::FullPuttOptions options;
   options.max_duration = max_duration;
   options.record_interval = record_interval;
