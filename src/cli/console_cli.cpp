@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
@@ -55,11 +56,8 @@ void add_console_command(CLI::App& app) {
     if (!o->field.empty()) config.field = o->field;
     if (!o->mode.empty()) config.mode = control::parse_module_mode(o->mode);
     config.validate();
-    std::ifstream script;
-    if (!o->script.empty()) {
-      script.open(o->script);
-      if (!script) throw IoError("console: cannot read script '" + o->script + "'");
-    }
+    std::istringstream script;  // read whole and bounded: a FIFO or /dev/zero is refused
+    if (!o->script.empty()) script.str(read_text_file(o->script));
     system::SessionOptions options;
     options.realtime = o->realtime;
     options.vision_sim = o->vision_sim;

@@ -1,4 +1,5 @@
 // train | predict | validate: thin wrappers over mg::learning (parse, load, call, print).
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -190,6 +191,14 @@ void add_learning_commands(CLI::App& app) {
       rows.push_back(std::move(row));
     }
     fmt::print("{}", format_csv(header, rows));
+    // Flagged, not hidden: GMR's linear extrapolation can ask for any value far from its data.
+    if (const auto far = learning::beyond_training(model, pred); !far.empty()) {
+      const auto& w = *std::max_element(far.begin(), far.end(), [](auto& a, auto& b) { return a.spread < b.spread; });
+      fmt::print(stderr, "minigolf: warning: {} prediction(s) lie more than {:g} training standard deviations from "
+                 "the training outputs (worst: row {}, {} at {:.3g} stds): queries far outside the training inputs\n",
+                 far.size(), learning::kMaxPredictionSpread, w.row + 1, model.output_names[static_cast<std::size_t>(w.output)],
+                 w.spread);
+    }
   });
 
   // ---- validate

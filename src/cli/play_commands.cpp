@@ -65,14 +65,6 @@ std::vector<double> parse_range(const std::string& what, const std::string& text
   return experiments::linspace(lo, hi, static_cast<int>(n));
 }
 
-/// Runs scripts/plots/plot.py with `args` (already quoted); throws on failure.
-void run_plot(const std::string& args) {
-  if (!system::is_root_process()) return;  // one process draws (MPI)
-  const std::filesystem::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";
-  const std::string command = "/usr/bin/python3 " + shell_quote(script.string()) + " " + args + " 1>&2";
-  if (std::system(command.c_str()) != 0) throw Error(fmt::format("--plot: {} failed", script.string()));
-}
-
 teacher::TeacherOptions teacher_options(const field::Situations& region, const std::string& strategy) {
   teacher::TeacherOptions t;
   t.strategy = teacher::parse_strategy(strategy.empty() ? region.strategy : strategy);
@@ -102,6 +94,8 @@ void add_sweep(CLI::App& app) {
     o.speeds = parse_range("--speeds", a->speeds);
     o.ball_only = a->ball_only;
     o.threads = a->sys.threads;
+    check_output_file(a->out);  // before the sweep, not after it
+    if (!a->plot.empty()) check_output_file(a->plot);
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
     if (!a->ball_only)
       for (double angle : o.angles)
@@ -113,10 +107,11 @@ void add_sweep(CLI::App& app) {
     write_file_atomic(a->out, experiments::sweep_csv(cells));
     int sunk = 0;
     for (const auto& c : cells) sunk += c.outcome.sunk;
-    if (!a->plot.empty())
-      run_plot(fmt::format("sweep {} {} --title {}", shell_quote(a->out), shell_quote(a->plot),
-                           shell_quote(fmt::format("{} hole ({:g}, {:g}){}", sys.field().name, o.hole[0],
-                                                   o.hole[1], a->ball_only ? ", ball only" : ", arm"))));
+    if (!a->plot.empty() && system::is_root_process())  // one process draws (MPI)
+      run_plot_script(fmt::format("sweep {} {} --title {}", shell_quote(a->out), shell_quote(a->plot),
+                                  shell_quote(fmt::format("{} hole ({:g}, {:g}){}", sys.field().name, o.hole[0],
+                                                          o.hole[1], a->ball_only ? ", ball only" : ", arm"))),
+                      a->plot);
     fmt::print("sweep on {} ({}), hole ({}, {}): {} of {} cells sink; written to {}\n", sys.field().name,
                a->ball_only ? "ball only" : "arm", o.hole[0], o.hole[1], sunk, cells.size(), a->out);
   });
@@ -213,8 +208,8 @@ void add_evaluate(CLI::App& app) {
   cmd->callback([a] {
     if (!a->save_model.empty() && !a->learn) throw InputError("--save-model: only with --learn");
     const learning::Model model = learning::load_model(a->model);
-    experiments::check_playable_model(model, a->model);
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
+    experiments::check_playable_model(model, a->model, &sys);
     const field::Situations region = region_of(sys.field(), a->situations_spec);
     experiments::EvaluateOptions o;
     o.situations = a->situations;
@@ -365,7 +360,7 @@ void add_curves(CLI::App& app) {
   cmd->add_option("--seeds", a->o.seeds, "Runs")->capture_default_str();
   cmd->add_option("--situations", a->o.situations, "Test situations per checkpoint")->capture_default_str();
   cmd->add_option("--seed", a->o.seed, "Seed of the runs")->check(unsigned_integer())->capture_default_str();
-  cmd->add_option("--test-seed", a->o.test_seed, "Seed of the test situations")->capture_default_str();
+  cmd->add_option("--test-seed", a->o.test_seed, "Seed of the test situations")->check(unsigned_integer())->capture_default_str();
   cmd->add_option("--region", a->situations_spec, "Region instead of the field's (as collect --situations)");
   cmd->add_option("-o,--output", a->out, "CSV to write")->required();
   cmd->callback([a] {
@@ -385,6 +380,7 @@ void add_curves(CLI::App& app) {
       throw InputError(fmt::format("--learner append: needs a plain GPR prior ({} keeps no data to append to)", a->prior));
     a->o.threads = a->sys.threads;
     a->o.validate();
+    check_output_file(a->out);  // before minutes of putts, not after
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
     const field::Situations region = region_of(sys.field(), a->situations_spec);
     a->o.teacher = teacher_options(region, "");

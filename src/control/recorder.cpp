@@ -11,10 +11,11 @@ void Recorder::start(const std::filesystem::path& path) {
   if (active_) throw InputError(fmt::format("record: already recording to '{}'", path_.string()));
   if (path.empty() || !path.has_filename())
     throw InputError(fmt::format("record: expected a file name, got '{}'", path.string()));
-  const auto folder = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  std::error_code ec;
-  if (!std::filesystem::is_directory(folder, ec))
-    throw IoError(fmt::format("record: folder '{}' does not exist", folder.string()));
+  try {
+    check_output_file(path);  // refused now, not at `record off` after the whole run
+  } catch (const IoError& e) {
+    throw IoError(fmt::format("record: {}", e.what()));
+  }
   rows_.clear();
   rows_.reserve(kCapacity);
   dropped_ = 0;

@@ -12,11 +12,12 @@
 #include <system_error>
 
 #include <climits>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <pthread.h>
-#include <unistd.h>
 
 #include "core/error.hpp"
 
@@ -52,10 +53,17 @@ std::string shown_path(const std::filesystem::path& path) {
   return fmt::format("{}...{} ({} characters)", s.substr(0, 60), s.substr(s.size() - 60), s.size());
 }
 
-std::uintmax_t check_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
+namespace {
+
+/// /dev/null is the one non-regular input allowed: the empty file, read at once.
+bool is_dev_null(const struct stat& st) {
+  struct stat null {};
+  return S_ISCHR(st.st_mode) && ::stat("/dev/null", &null) == 0 && st.st_rdev == null.st_rdev;
+}
+
+std::uintmax_t check_input_stat(const std::filesystem::path& path, const struct stat& st, std::uintmax_t max_bytes) {
   if (S_ISDIR(st.st_mode)) throw IoError(fmt::format("{}: is a directory, expected a file", shown_path(path)));
+  if (is_dev_null(st)) return 0;
   if (!S_ISREG(st.st_mode)) {
     const auto type = std::filesystem::status(path).type();
     throw IoError(fmt::format("{}: is {}; input files must be regular files", shown_path(path), file_kind(type)));
@@ -67,18 +75,37 @@ std::uintmax_t check_input_file(const std::filesystem::path& path, std::uintmax_
   return size;
 }
 
+}  // namespace
+
+std::uintmax_t check_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
+  return check_input_stat(path, st, max_bytes);
+}
+
 std::string read_text_file(const std::filesystem::path& path, std::uintmax_t max_bytes) {
-  check_input_file(path, max_bytes);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(fmt::format("{}: cannot open for reading", shown_path(path)));
+  // O_NONBLOCK, then fstat: a FIFO swapped in after a check can neither block the open nor be read.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
+  const std::uintmax_t size = check_input_stat(path, st, max_bytes);
   std::string text;
+  text.reserve(static_cast<std::size_t>(size));
   char buffer[1 << 16];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+  for (;;) {
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw IoError(fmt::format("{}: read failed: {}", shown_path(path), std::strerror(errno)));
+    if (n == 0) break;
+    text.append(buffer, static_cast<std::size_t>(n));
     if (text.size() > max_bytes)  // it grew while we read
       throw IoError(fmt::format("{}: grew past {} MiB while being read", shown_path(path), max_bytes >> 20));
   }
-  if (in.bad()) throw IoError(fmt::format("{}: read failed", shown_path(path)));
   return text;
 }
 

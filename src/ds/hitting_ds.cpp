@@ -135,6 +135,12 @@ void RolloutOptions::validate() const {
 
 RolloutResult rollout(const HittingModel& model, const HittingCommand& command, const RolloutOptions& options) {
   options.validate();
+  // The DS is a model of the hitting motion near x*; a start metres away is no motion of the arm
+  // (and 1e308 overflows the error norms to inf).
+  if (!command.start.allFinite() || (command.start - model.x_star()).norm() > kMaxRolloutStartDistance)
+    throw InputError(fmt::format("rollout: start: expected a finite point within {} m of x* ({}, {}, {}), got "
+                                 "({}, {}, {})", kMaxRolloutStartDistance, model.x_star()[0], model.x_star()[1],
+                                 model.x_star()[2], command.start[0], command.start[1], command.start[2]));
   HittingDsData data(model);
   data.set_command(model, command);
   RolloutResult res;

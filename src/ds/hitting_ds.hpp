@@ -109,6 +109,9 @@ struct RolloutResult {
 
 /// Integrates the DS from `command.start` until the ball is reached (the hitting plane is crossed
 /// or the distance to x* stops decreasing), it times out or diverges.
+/// Rollout starts at most this far from x* [m] (the arm reaches about 1 m).
+inline constexpr double kMaxRolloutStartDistance = 5.0;
+/// Throws InputError for a start that is not finite or farther than kMaxRolloutStartDistance from x*.
 RolloutResult rollout(const HittingModel& model, const HittingCommand& command, const RolloutOptions& options = {});
 
 /// Trajectory CSV: header `t,x,y,z,vx,vy,vz`.

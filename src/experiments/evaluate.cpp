@@ -39,7 +39,7 @@ int output_index(const learning::Model& m, std::string_view name) {
 
 }  // namespace
 
-void check_playable_model(const learning::Model& model, const std::string& source) {
+void check_playable_model(const learning::Model& model, const std::string& source, const system::System* system) {
   for (const auto& n : model.input_names)
     if (n != "xi_x" && n != "xi_y" && n != "hole_x" && n != "hole_y")
       throw InputError(fmt::format("{}: model input '{}' does not match a situation (expected xi_x, "
@@ -49,6 +49,11 @@ void check_playable_model(const learning::Model& model, const std::string& sourc
                                  fmt::join(model.output_names, ", ")));
   if (output_index(model, "speed") < 0 && model.fixed_value("speed") == nullptr)
     throw InputError(fmt::format("{}: the model has neither an output 'speed' nor a fixed speed", source));
+  if (const double* v = model.fixed_value("speed")) {
+    if (!std::isfinite(*v) || !(*v > 0.0))
+      throw InputError(fmt::format("{}: fixed.speed: expected a club speed > 0 m/s, got {}", source, *v));
+    if (system) system->check_speed(*v, source + ": fixed.speed");
+  }
 }
 
 std::vector<Prediction> predict_hits(const learning::Model& model, const field::Field& field,
@@ -87,7 +92,7 @@ void EvaluateOptions::validate() const {
 Evaluation evaluate_model(const system::System& system, const learning::Model& model,
                           const field::Situations& region, const EvaluateOptions& options,
                           const std::function<void(int, int)>& progress) {
-  check_playable_model(model, "model");
+  check_playable_model(model, "model", &system);
   return evaluate_policy(
       system, [&](const std::vector<std::array<double, 2>>& holes) { return predict_hits(model, system.field(), holes); },
       region, options, progress);
@@ -230,7 +235,7 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
 LearningEvaluation evaluate_appending(const system::System& system, const learning::Model& model,
                                       const field::Situations& region, const EvaluateOptions& options,
                                       const std::function<void(int, int)>& progress) {
-  check_playable_model(model, "model");
+  check_playable_model(model, "model", &system);
   if (model.method != learning::Method::kGpr || model.prior)
     throw InputError(fmt::format("--learn append: needs a plain GPR model (a {} model keeps no training data to add to)",
                                  model.prior ? "residual" : learning::method_name(model.method)));
@@ -322,7 +327,7 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
 LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
                                      const field::Situations& region, const EvaluateOptions& options,
                                      const std::function<void(int, int)>& progress) {
-  check_playable_model(model, "model");
+  check_playable_model(model, "model", &system);
   options.validate();
   if (options.perception_noise > 0.0 || options.oracle)
     throw InputError("--learn: plays without perception noise and without the oracle");

@@ -28,8 +28,10 @@ struct Prediction {
 };
 std::vector<Prediction> predict_hits(const learning::Model& model, const field::Field& field,
                                      const std::vector<std::array<double, 2>>& holes);
-/// Throws InputError unless the model can be played on a field (see predict_hits).
-void check_playable_model(const learning::Model& model, const std::string& source);
+/// Throws InputError unless the model can be played on a field (see predict_hits): a fixed
+/// speed is a finite club speed > 0, inside `system`'s safe envelope when one is given.
+void check_playable_model(const learning::Model& model, const std::string& source,
+                          const system::System* system = nullptr);
 
 /// How `evaluate --learn` learns while playing.
 enum class LearnMode {

@@ -1,6 +1,7 @@
 #include "experiments/learning_curves.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -44,8 +45,8 @@ void CurveOptions::validate() const {
   for (int c : checkpoints)
     if (c < 0 || c > 100000) throw InputError(fmt::format("learning curves: checkpoint {}: expected 0..100000", c));
   if (checkpoints.back() < 1) throw InputError("learning curves: the last checkpoint must be >= 1 putt");
-  if (!std::is_sorted(checkpoints.begin(), checkpoints.end()))
-    throw InputError("learning curves: checkpoints must be increasing");
+  if (std::adjacent_find(checkpoints.begin(), checkpoints.end(), std::greater_equal<int>()) != checkpoints.end())
+    throw InputError("learning curves: checkpoints must be strictly increasing (each a different putt count)");
   if (seeds < 1 || seeds > 1000) throw InputError(fmt::format("learning curves: seeds: expected 1..1000, got {}", seeds));
   if (situations < 1 || situations > 100000)
     throw InputError(fmt::format("learning curves: situations: expected 1..100000, got {}", situations));

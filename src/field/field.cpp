@@ -187,6 +187,12 @@ void check_hole_position(const Field& field, std::array<double, 2> p) {
         "hole position: ({}, {}) puts the hole outside the lane of field '{}' "
         "(x in [{}, {}], y in [{}, {}], hole radius {})",
         p[0], p[1], field.name, b[0], b[1], b[2], b[3], r));
+  // A ball resting in or over the cup before the stroke is not a putt.
+  const double gap = std::hypot(p[0] - field.tee[0], p[1] - field.tee[1]);
+  if (gap < r + field.ball.radius)
+    throw InputError(fmt::format("hole position: ({}, {}) puts the hole on the tee ({}, {}) of field '{}' "
+                                 "(they must be at least {:.4g} m apart)",
+                                 p[0], p[1], field.tee[0], field.tee[1], field.name, r + field.ball.radius));
 }
 
 Field parse_field(std::string_view yaml_text, const std::string& source,
@@ -262,9 +268,10 @@ Field load_field(std::string_view name_or_path) {
     path = arg;
   } else {
     path = data_dir() / "fields" / (arg + ".yaml");
-    if (!std::filesystem::exists(path))
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))  // ec: a name too long is unknown, not a crash
       throw InputError(fmt::format("field: unknown field '{}' (shipped: {}; give a path for your "
-                                   "own file)", arg, fmt::join(list_shipped_fields(), ", ")));
+                                   "own file)", shown_path(arg), fmt::join(list_shipped_fields(), ", ")));
   }
   return parse_field(read_text_file(path), path.string(), path.parent_path());
 }

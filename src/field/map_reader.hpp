@@ -52,7 +52,8 @@ class MapReader {
   }
   int integer(const std::string& key) {
     const double v = number(key);
-    if (v != std::floor(v) || std::abs(v) > 1e6) fail(full(key), fmt::format("expected a whole number, got {}", v));
+    if (v != std::floor(v) || std::abs(v) > 1e6)
+      fail(full(key), fmt::format("expected a whole number in -1000000..1000000, got {}", v));
     return static_cast<int>(v);
   }
   template <std::size_t N>
@@ -61,7 +62,7 @@ class MapReader {
     std::array<int, N> out{};
     for (std::size_t i = 0; i < N; ++i) {
       if (v[i] != std::floor(v[i]) || std::abs(v[i]) > 1e6)
-        fail(full(key), fmt::format("expected whole numbers, got {}", v[i]));
+        fail(full(key), fmt::format("expected whole numbers in -1000000..1000000, got {}", v[i]));
       out[i] = static_cast<int>(v[i]);
     }
     return out;

@@ -186,8 +186,7 @@ std::array<double, 2> Surface::gradient(double x, double y) const {
 
 HeightmapTerm load_heightmap(const std::string& path, std::array<double, 4> bounds, double z_min,
                              double z_max) {
-  if (!std::filesystem::exists(path))
-    throw IoError(fmt::format("{}: heightmap file not found", path));
+  check_input_file(path);  // a regular, bounded file: libpng would block on a FIFO
   const std::string ext = std::filesystem::path(path).extension().string();
   HeightmapTerm t;
   if (ext == ".png" || ext == ".PNG") {

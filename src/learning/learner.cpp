@@ -24,7 +24,12 @@ Standardizer make_standardizer(const Eigen::MatrixXd& m) {
   s.scale.resize(m.cols());
   for (Eigen::Index j = 0; j < m.cols(); ++j) {
     const double sd = std::sqrt((m.col(j).array() - s.mean(j)).square().mean());
-    s.scale(j) = sd > 0.0 && std::isfinite(sd) ? sd : 1.0;
+    // A column whose spread is rounding noise of its values is constant: dividing by that noise
+    // would blow a query a few ulps away up to 1e13 standard deviations (and GMR's linear
+    // extrapolation with it).
+    const double magnitude = m.col(j).cwiseAbs().maxCoeff();
+    const bool negligible = !(sd > kNegligibleSpread * magnitude) || !std::isfinite(sd);
+    s.scale(j) = negligible ? 1.0 : sd;
   }
   return s;
 }
@@ -274,7 +279,8 @@ void TrainOptions::validate() const {
   if (num_gaussians < 0) throw InputError(fmt::format("number of Gaussians: expected >= 1 (or 0 = choose), got {}", num_gaussians));
   if (max_gaussians < 1) throw InputError(fmt::format("max Gaussians: expected >= 1, got {}", max_gaussians));
   if (cv_folds < 2) throw InputError(fmt::format("cross-validation folds: expected >= 2, got {}", cv_folds));
-  if (restarts < 1) throw InputError(fmt::format("restarts: expected >= 1, got {}", restarts));
+  if (restarts < 1 || restarts > kMaxRestarts)
+    throw InputError(fmt::format("restarts: expected 1..{}, got {}", kMaxRestarts, restarts));
   em.validate();
   // 0 lets a component collapse onto a few points: the model would be written and then rejected.
   if (!choose_reg_covar && !(em.reg_covar > 0.0))
@@ -382,6 +388,7 @@ Predictions checked(Predictions p) {
                                        "model or the query beyond what double precision can carry)", i + 1));
   return p;
 }
+
 }  // namespace
 
 Predictions predict(const Model& m, const Eigen::MatrixXd& queries) {
@@ -434,6 +441,17 @@ Predictions predict(const Model& m, const Eigen::MatrixXd& queries) {
     }
   }
   return checked(p);
+}
+
+std::vector<BeyondTraining> beyond_training(const Model& m, const Predictions& p) {
+  std::vector<BeyondTraining> out;
+  if (m.method == Method::kGpr || m.prior) return out;  // GPR reverts to its mean far from data
+  for (Eigen::Index i = 0; i < p.mean.rows(); ++i)
+    for (int o = 0; o < m.num_outputs(); ++o) {
+      const double z = (p.mean(i, o) - m.output_standardizer.mean(o)) / m.output_standardizer.scale(o);
+      if (std::abs(z) > kMaxPredictionSpread) out.push_back({static_cast<int>(i), o, std::abs(z)});
+    }
+  return out;
 }
 
 std::vector<Score> score(const Model& m, const Dataset& v) {

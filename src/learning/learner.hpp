@@ -116,10 +116,28 @@ struct Predictions {
 /// at 1000 rows with 10 starts on one core), so larger sets are refused with that message
 /// rather than left to run for minutes; GMR has no such bound (linear in N).
 inline constexpr int kMaxGprRows = 1000;
+/// Optimiser starts / k-means++ seedings at most (each costs a whole fit; 1000 is minutes).
+inline constexpr int kMaxRestarts = 1000;
+/// A training column whose standard deviation is at most this fraction of its largest magnitude
+/// is rounding noise: it is standardised as a constant column (scale 1).
+inline constexpr double kNegligibleSpread = 1e-9;
+/// GMR predictions farther than this many training-output standard deviations from the training
+/// mean are flagged (`beyond_training`): linear extrapolation, not a putt.
+inline constexpr double kMaxPredictionSpread = 50.0;
 /// Residual models over residual models (adapting an adapted model) nest at most this deep.
 inline constexpr int kMaxPriorDepth = 8;
 
 Model train(const Dataset& data, const TrainOptions& options);
+
+/// A prediction far outside the training outputs: row, output, distance in training stds.
+struct BeyondTraining {
+  int row = 0;
+  int output = 0;
+  double spread = 0.0;
+};
+/// The GMR predictions of `p` farther than kMaxPredictionSpread training stds from the training
+/// mean (GMR extrapolates linearly; GPR reverts to its mean, so none for GPR models).
+std::vector<BeyondTraining> beyond_training(const Model& m, const Predictions& p);
 
 /// `queries` is (N x I) in the model's input order.
 Predictions predict(const Model& model, const Eigen::MatrixXd& queries);

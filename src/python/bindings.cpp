@@ -299,12 +299,19 @@ PYBIND11_MODULE(_minigolf, m) {
       .def_readonly("rolling_resistance", &field::Field::rolling_resistance, "Penner's rho [-]")
       .def_readonly("sliding_friction", &field::Field::sliding_friction, "Ball-lane Coulomb friction [-]")
       .def_readonly("situations", &field::Field::situations)
+      .def("check_hole", [](const field::Field& f, std::array<double, 2> hole) { field::check_hole_position(f, hole); },
+           py::arg("hole"), "Raises ValueError unless a hole at (x, y) [m] lies on the lane and off the tee")
       .def("height", [](const field::Field& f, py::object x, py::object y) -> py::object {
              const py::module_ np = py::module_::import("numpy");
              const py::tuple b = np.attr("broadcast_arrays")(np.attr("asarray")(x, "float64"), np.attr("asarray")(y, "float64"));
              const Array bx = np.attr("ascontiguousarray")(b[0]), by = np.attr("ascontiguousarray")(b[1]);
              Array out(std::vector<py::ssize_t>(bx.shape(), bx.shape() + bx.ndim()));
-             for (py::ssize_t i = 0; i < bx.size(); ++i) out.mutable_data()[i] = f.height(bx.data()[i], by.data()[i]);
+             for (py::ssize_t i = 0; i < bx.size(); ++i) {
+               if (!std::isfinite(bx.data()[i]) || !std::isfinite(by.data()[i]))
+                 throw InputError(fmt::format("Field.height: expected finite x and y, got ({}, {}) at index {}",
+                                              bx.data()[i], by.data()[i], i));
+               out.mutable_data()[i] = f.height(bx.data()[i], by.data()[i]);
+             }
              if (bx.ndim() == 0) return py::float_(out.data()[0]);
              return out;
            }, py::arg("x"), py::arg("y"), "Lane height at (x, y) [m] (arrays broadcast)")
@@ -579,7 +586,7 @@ PYBIND11_MODULE(_minigolf, m) {
       .def("evaluate",
            [](const system::System& s, const learning::Model& model, int situations, std::uint64_t seed, int threads,
               bool oracle, const std::string& region_spec) {
-             experiments::check_playable_model(model, "model");
+             experiments::check_playable_model(model, "model", &s);
              experiments::EvaluateOptions o;
              o.situations = situations;
              o.seed = seed;

@@ -103,7 +103,8 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
     if (putts < 0 || l.putt < putts) use.push_back(&l);
   if (use.size() < 2)
     throw InputError(fmt::format("self-teach: field '{}': {} hindsight label(s) in the region after {} "
-                                 "putts (need 2): its holes seem out of the robot's reach",
+                                 "putts (need 2): no label yet; give a larger budget (if many putts find none, its holes are out "
+                                 "of the robot's reach)",
                                  system.field().name, use.size(), putts < 0 ? 0 : putts));
   if (use.size() > kMaxTrainingLabels) {
     std::vector<const Label*> thin;

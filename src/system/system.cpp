@@ -66,6 +66,11 @@ void System::check_request(double angle, double speed, const std::string& what) 
   if (!std::isfinite(angle) || angle < c.angle_min || angle > c.angle_max)
     throw InputError(fmt::format("{}: angle: expected {}..{} rad (safe envelope), got {}", what,
                                  c.angle_min, c.angle_max, angle));
+  check_speed(speed, what);
+}
+
+void System::check_speed(double speed, const std::string& what) const {
+  const auto& c = config_;
   if (!std::isfinite(speed) || speed < c.speed_min || speed > c.speed_max)
     throw InputError(fmt::format("{}: speed: expected {}..{} m/s (club speed, safe envelope), got {}",
                                  what, c.speed_min, c.speed_max, speed));

@@ -56,6 +56,8 @@ class System {
 
   /// Throws InputError naming `what` unless (angle, speed) is inside the module's safe envelope.
   void check_request(double angle, double speed, const std::string& what) const;
+  /// The speed half of `check_request`.
+  void check_speed(double speed, const std::string& what) const;
 
  private:
   control::ModuleConfig config_;

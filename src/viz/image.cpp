@@ -34,6 +34,7 @@ void write_png(const std::filesystem::path& path, const Image& image) {
 }
 
 Image read_png(const std::filesystem::path& path) {
+  check_input_file(path);
   png_image p{};
   p.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&p, path.c_str()))

@@ -11,11 +11,13 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <thread>
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
+#include "core/io.hpp"
 #include "system/session.hpp"
 #include "viz/renderer.hpp"
 
@@ -133,11 +135,8 @@ std::string overlay_text(const system::SessionView& v) {
 }  // namespace
 
 void run_viewer(const control::ModuleConfig& config, const ViewerOptions& options) {
-  std::ifstream script;
-  if (!options.script.empty()) {
-    script.open(options.script);
-    if (!script) throw IoError("view: cannot read script '" + options.script + "'");
-  }
+  std::istringstream script;  // read whole and bounded: a FIFO or /dev/zero is refused
+  if (!options.script.empty()) script.str(read_text_file(options.script));
   GlWindow window(options.width, options.height, true, "minigolf view");
   PathObserver observer;
   system::SessionOptions so;

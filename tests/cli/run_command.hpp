@@ -17,11 +17,12 @@ struct CommandResult {
   std::string err;
 };
 
-inline CommandResult run_minigolf(const std::string& args) {
+/// Runs the shell command line `command` (stderr captured apart).
+inline CommandResult run_command_line(const std::string& command) {
   static int counter = 0;
   const auto err_path = std::filesystem::temp_directory_path() /
                         ("mg_cli_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  const std::string cmd = std::string(MINIGOLF_BINARY) + " " + args + " 2>" + err_path.string();
+  const std::string cmd = command + " 2>" + err_path.string();
   CommandResult r;
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -36,6 +37,10 @@ inline CommandResult run_minigolf(const std::string& args) {
   r.err = ss.str();
   std::filesystem::remove(err_path);
   return r;
+}
+
+inline CommandResult run_minigolf(const std::string& args) {
+  return run_command_line(std::string(MINIGOLF_BINARY) + " " + args);
 }
 
 /// Number of lines in `s` (a trailing newline does not start a new line).

@@ -9,7 +9,13 @@
 #include <fstream>
 #include <string>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <cstdio>
+#include <sstream>
 
 #include "run_command.hpp"
 
@@ -145,6 +151,160 @@ TEST_F(Robustness, MalformedCommandLineNumbersAreInputErrors) {
     const CommandResult r = run_minigolf(args);
     expect_input_error(r, args, {"--gaussians"});
   }
+}
+
+// ---- Issue 22: the gaps a hostile round of testing found; each is exit 2, one line, and the
+// target untouched (or a bounded, finite answer).
+
+TEST_F(Robustness, FigureWritersNeverReplaceFifosLinksOrDevices) {
+  const std::string fifo = path("f.png"), link = path("l.png"), kept = write("kept.txt", "kept\n");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_symlink(kept, link);
+  for (const std::string& target : {fifo, link, std::string("/dev/full")})
+    for (const std::string& args : {"plot ds -o " + target, "plot field --field flat -o " + target,
+                                    "sweep --field flat --ball-only --angles 0:0:1 --speeds 1:1:1 -o " +
+                                        path("s.csv") + " --plot " + target}) {
+      const CommandResult r = run_minigolf(args);
+      expect_input_error(r, args, {"refusing to replace"});
+    }
+  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_TRUE(fs::is_character_file(fs::status("/dev/full")));
+  EXPECT_FALSE(fs::exists(path("s.csv")));  // refused before the sweep ran
+}
+
+TEST_F(Robustness, BadOutputFoldersAreInputErrors) {
+  const std::string file = write("file.txt", "x\n");
+  for (const std::string& args : {"plot ds -o " + path("missing/x.png"), "plot ds -o " + file + "/x.png",
+                                  "plot ds -o " + path("p.png") + " --data-dir " + file,
+                                  "plot ds -o " + path("p.png") + " --data-dir /dev/null",
+                                  "sweep --field flat --ball-only --angles 0:0:1 --speeds 1:1:1 -o " + path("s.csv") +
+                                      " --plot " + dir_.string(),
+                                  "sweep --field flat --ball-only --angles 0:0:1 --speeds 1:1:1 -o " + path("s.csv") +
+                                      " --plot " + path("missing/x.png")}) {
+    const CommandResult r = run_minigolf(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args << "\n" << r.err;
+  }
+}
+
+TEST_F(Robustness, HugeDurationsAreRefused) {
+  for (const std::string& args : {std::string("putt --angle 0 --speed 1 --max-duration 1e16"),
+                                  std::string("putt --ball-only --angle 0 --speed 1 --max-duration 1e16")}) {
+    const CommandResult r = run_minigolf(args);
+    expect_input_error(r, args, {"max_duration"});
+  }
+}
+
+TEST_F(Robustness, GmrOnAnAlmostConstantColumnStaysInsideItsTrainingOutputs) {
+  // Column xi_x made almost constant (1.9 + row * 1e-15), as in the issue's reproducer.
+  std::string csv = "xi_x,xi_y,angle,speed\n", queries = "xi_x,xi_y\n";
+  for (int i = 0; i < 40; ++i) {
+    const double y = -0.3 + 0.015 * i;
+    csv += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", 1.9 + i * 1e-15, y, 0.4 * y, 1.2 + 0.5 * y * y);
+    queries += fmt::format("1.9,{:.17g}\n", y + 0.007);
+  }
+  const std::string data = write("near.csv", csv), q = write("q.csv", queries);
+  for (const char* method : {"gmr", "joint-gmr"}) {
+    const std::string model = path(std::string(method) + ".json");
+    ASSERT_EQ(run_minigolf(fmt::format("train --method {} --gaussians 2 {} -o {}", method, data, model)).exit_code, 0);
+    const CommandResult r = run_minigolf("predict " + model + " " + q);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::istringstream lines(r.out);
+    std::string line;
+    std::getline(lines, line);
+    int rows = 0;
+    while (std::getline(lines, line)) {
+      double x, y, angle, angle_std, speed, speed_std;
+      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &x, &y, &angle, &angle_std, &speed, &speed_std), 6);
+      EXPECT_LT(std::abs(angle - 0.4 * y), 0.05) << method << ": " << line;
+      EXPECT_LT(std::abs(speed - (1.2 + 0.5 * y * y)), 0.05) << method << ": " << line;
+      ++rows;
+    }
+    EXPECT_EQ(rows, 40);
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(Robustness, GmrPredictionsFarOutsideTheTrainingOutputsAreFlagged) {
+  const std::string model = path("m.json");
+  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 1 " + train_ + " -o " + model).exit_code, 0);
+  const CommandResult r = run_minigolf("predict " + model + " " + write("far.csv", "xi_x,xi_y\n900,0\n"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("standard deviations"), std::string::npos) << r.err;
+}
+
+TEST_F(Robustness, ModelsWithABadFixedSpeedAreRefused) {
+  std::string csv = "xi_x,xi_y,angle,speed\n";
+  for (int i = 0; i < 12; ++i) csv += fmt::format("2.0,{:.6f},{:.6f},1.2\n", -0.1 + 0.02 * i, -0.05 + 0.01 * i);
+  const std::string good = path("good.json");
+  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 1 --outputs angle " + write("angle.csv", csv) + " -o " + good)
+                .exit_code,
+            0);
+  nlohmann::json model = nlohmann::json::parse(std::ifstream(good));
+  ASSERT_TRUE(model.contains("fixed")) << model.dump();
+  int k = 0;
+  for (const double value : {-1.0, 0.0, 5e-324, 1e150, 1e308, -1e308}) {
+    model["fixed"]["speed"] = value;
+    const std::string bad = write(fmt::format("bad{}.json", k++), model.dump());
+    const CommandResult r = run_minigolf("evaluate --field flat --situations 2 --model " + bad);
+    expect_input_error(r, fmt::format("{}", value), {"fixed.speed"});
+  }
+}
+
+TEST_F(Robustness, SeedsAndBoundsOfTheLearningCommands) {
+  for (const std::string& args : {std::string("curves --field flat --test-seed -1"),
+                                  std::string("curves --field flat --test-seed 18446744073709551616"),
+                                  std::string("curves --field flat --test-seed 1e23"),
+                                  "curves --field flat --checkpoints 3,3 -o " + path("c.csv"),
+                                  "train --method gmr --restarts 1000000000 " + train_ + " -o " + path("m.json")}) {
+    const CommandResult r = run_minigolf(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args << "\n" << r.err;
+  }
+  EXPECT_FALSE(fs::exists(path("m.json")));
+}
+
+TEST_F(Robustness, NonRegularAndHugeInputFilesAreRefusedAtOnce) {
+  const std::string fifo = path("in.fifo");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  const std::string model = path("m.json");
+  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 1 " + train_ + " -o " + model).exit_code, 0);
+  const std::string long_name(5000, 'x');
+  for (const std::string& args : {"predict /dev/zero " + train_, "predict " + model + " /dev/zero",
+                                  "predict " + fifo + " " + train_, "train --method gmr " + fifo + " -o " + path("n.json"),
+                                  "field show " + fifo, "field show " + long_name, "field show " + long_name + ".yaml",
+                                  "console --script " + fifo, std::string("console --script /dev/zero"),
+                                  "evaluate --field flat --situations 2 --model " + fifo}) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const CommandResult r = run_command_line("timeout 60 " + std::string(MINIGOLF_BINARY) + " " + args);
+    EXPECT_EQ(r.exit_code, 2) << args.substr(0, 200) << "\n" << r.err.substr(0, 400);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err.substr(0, 400);
+    EXPECT_LE(r.err.size(), 400u) << "a long name is shortened in the message";
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20)) << args.substr(0, 200);
+  }
+}
+
+TEST_F(Robustness, HolesOnTheTeeAndOversizedCountsAreRefusedWithTheirRange) {
+  const CommandResult tee = run_minigolf("sweep --field flat --hole 0,0 --ball-only --angles 0:0:1 --speeds 1:1:1 -o " +
+                                         path("s.csv"));
+  expect_input_error(tee, "--hole 0,0", {"on the tee"});
+  std::ifstream in(std::string(MINIGOLF_SOURCE_DIR) + "/data/fields/flat.yaml");
+  std::string field((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = field.find("count: 11");
+  ASSERT_NE(at, std::string::npos);
+  field.replace(at, 9, "count: 1000000000");
+  const CommandResult r = run_minigolf("field show " + write("counts.yaml", field));
+  expect_input_error(r, "count 1e9", {"count", "1000000000", ".."});
+}
+
+TEST_F(Robustness, ConsoleRefusesARecordingToADeviceWhenItIsAsked) {
+  const std::string script = write("rec.txt", "record on /dev/full\nquit\n");
+  const CommandResult r = run_minigolf("console --script " + script);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("refusing to replace"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("recording to /dev/full"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -51,6 +51,56 @@ TEST(Io, AtomicWriteNeverReplacesWhatIsNotARegularFile) {
   std::filesystem::remove_all(dir);
 }
 
+// Issue 22: input files are regular and bounded; FIFOs, devices and huge files are refused at
+// once (a FIFO with no writer would block forever, /dev/zero would exhaust memory).
+TEST(Io, InputsMustBeRegularBoundedFiles) {
+  const auto dir = std::filesystem::temp_directory_path() / ("mg_io_in_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto fifo = dir / "fifo", big = dir / "big", ok = dir / "ok";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  write_file_atomic(ok, "0123456789");
+  write_file_atomic(big, std::string(2048, 'x'));
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_THROW(read_text_file(fifo), IoError);  // no writer: must not block
+  EXPECT_THROW(read_text_file("/dev/zero"), IoError);
+  EXPECT_THROW(read_text_file(dir), IoError);
+  EXPECT_THROW(read_text_file(big, 1024), IoError);
+  EXPECT_THROW(read_text_file(dir / std::string(5000, 'x')), IoError);  // name too long
+  EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(5));
+  EXPECT_EQ(read_text_file("/dev/null"), "");  // the empty file, allowed
+  EXPECT_EQ(read_text_file(ok, 10), "0123456789");
+  EXPECT_EQ(check_input_file(ok), 10u);
+  try {
+    read_text_file("/dev/zero");
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("regular files"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Io, OutputTargetsAreCheckedBeforeTheWork) {
+  const auto dir = std::filesystem::temp_directory_path() / ("mg_io_out_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto fifo = dir / "fifo", link = dir / "link";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  write_file_atomic(dir / "target", "kept");
+  std::filesystem::create_symlink(dir / "target", link);
+  EXPECT_NO_THROW(check_output_file(dir / "new.png"));
+  EXPECT_NO_THROW(check_output_file(dir / "target"));
+  for (const auto& bad : {fifo, link, dir, std::filesystem::path("/dev/full"), std::filesystem::path("/dev/null"),
+                          dir / "missing" / "x.png", dir / "target" / "x.png"})
+    EXPECT_THROW(check_output_file(bad), IoError) << bad;
+  EXPECT_THROW(ensure_output_dir(dir / "target"), IoError);
+  EXPECT_THROW(ensure_output_dir(link), IoError);
+  EXPECT_NO_THROW(ensure_output_dir(dir / "made" / "here"));
+  EXPECT_TRUE(std::filesystem::is_directory(dir / "made" / "here"));
+  EXPECT_EQ(read_text_file(dir / "target"), "kept");
+  EXPECT_LE(shown_path(std::string(5000, 'y')).size(), 200u);
+  std::filesystem::remove_all(dir);
+}
+
 // A write killed by SIGTERM leaves no temporary file (the handler removes it).
 TEST(Io, AKilledWriteLeavesNoTemporaryFile) {
   const auto dir = std::filesystem::temp_directory_path() / ("mg_io_kill_" + std::to_string(::getpid()));

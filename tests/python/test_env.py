@@ -188,3 +188,11 @@ def test_the_example_trains_a_policy():
     assert last.startswith("success ratio")
     ratio = float(last.split()[2])
     assert ratio >= 0.8, r.stdout  # a linear policy learns the flat field (its start: 0)
+
+
+def test_reset_refuses_a_hole_on_the_tee_or_off_the_lane():
+    env = PuttEnv(field="flat", mode="ball")
+    tee = tuple(env.systems[0].field.tee)
+    for hole in (tee, (9.0, 0.0)):
+        with pytest.raises(ValueError, match="options\\['hole'\\]"):
+            env.reset(seed=0, options={"hole": hole})

@@ -256,3 +256,37 @@ def test_a_plant_is_the_world_and_equals_the_cli(tmp_path):
     (tmp_path / "bad.yaml").write_text("arm:\n  club_speed_scale: 9\n")
     with pytest.raises(ValueError, match="arm.club_speed_scale"):
         minigolf.System(field="flat", plant=str(tmp_path / "bad.yaml"))
+
+
+def test_hostile_inputs_raise_instead_of_returning_nan(flat):
+    """Issue 22, items 2, 8, 10, 11: bounded, finite answers or a ValueError/OSError."""
+    f = flat.field
+    for x, y in [(float("nan"), 0.0), (0.0, float("inf")), (None, None), ([0.0, float("nan")], [0.0, 0.0])]:
+        with pytest.raises((ValueError, TypeError)):
+            f.height(x, y)
+    assert np.isfinite(f.height([0.0, 1.0], [0.0, 0.1])).all()
+    h = minigolf.HittingModel.load()
+    for start in ([1e308, 0.0, 0.0], [float("nan"), 0.0, 0.0], np.array(h.x_star) + [10.0, 0.0, 0.0]):
+        with pytest.raises(ValueError, match="start"):
+            h.rollout(angle=0.1, speed=1.5, start=start)
+    with pytest.raises((ValueError, OSError)):
+        minigolf.System(field="x" * 100000)
+    with pytest.raises(ValueError, match="max_duration"):
+        flat.putt(0.0, 1.0, max_duration=1e308)
+    with pytest.raises(ValueError, match="tee"):
+        flat.teach(tuple(f.tee))
+    with pytest.raises(ValueError, match="tee"):
+        f.check_hole(tuple(f.tee))
+    f.check_hole(tuple(f.hole_position))
+
+
+def test_hostile_input_files_are_refused_at_once(tmp_path):
+    """Issue 22, items 7 and 9: /dev/zero and FIFOs as input files raise OSError at once."""
+    import os
+    fifo = tmp_path / "model.fifo"
+    os.mkfifo(fifo)
+    t0 = time.monotonic()
+    for path in ("/dev/zero", str(fifo)):
+        with pytest.raises(OSError, match="regular files"):
+            minigolf.Model.load(path)
+    assert time.monotonic() - t0 < 5.0

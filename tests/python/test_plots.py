@@ -7,6 +7,7 @@ import csv
 import json
 import math
 import os
+import stat
 import subprocess
 import sys
 
@@ -407,3 +408,46 @@ def test_strength_draws_both_panels_and_rejects_bad_inputs(tmp_path):
     assert_error(run("strength", strength, nomod, tmp_path / "x.png"), "s_constant_")
     text = write_csv(tmp_path / "text.csv", ["demo", "distance", "speed", "strength"], [[0, "abc", 1, 1]])
     assert_error(run("strength", text, mods, tmp_path / "x.png"), "text.csv", "distance")
+
+
+def test_figures_never_replace_fifos_links_or_devices(tmp_path, sweep_csv):
+    """Issue 22, item 1: the Python figure path keeps the atomic-file policy of the C++ writers."""
+    fifo = tmp_path / "f.png"
+    os.mkfifo(fifo)
+    kept = tmp_path / "kept.txt"
+    kept.write_text("kept\n")
+    link = tmp_path / "l.png"
+    link.symlink_to(kept)
+    for target in (fifo, link, tmp_path):
+        assert_error(run("sweep", sweep_csv, target), "not a regular file" if target != tmp_path else "")
+    assert_error(run("sweep", sweep_csv, tmp_path / "missing" / "x.png"), "does not exist")
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode) and os.path.islink(link)
+    assert kept.read_text() == "kept\n"
+    assert not [p for p in os.listdir(tmp_path) if p.startswith(".plot-")]
+
+
+def test_fuzzed_sweep_csvs_are_drawn_or_refused_in_one_line(tmp_path, sweep_csv):
+    """A fuzz of the figure path's CSV reader: mutated files give a PNG (exit 0) or one
+    'plot: error:' line (exit 2), never a traceback. Fixed seed: the same cases every run."""
+    rng = np.random.default_rng(22)
+    text = open(sweep_csv).read()
+    tokens = ["", "nan", "inf", "-1e308", "1e309", "x", ",", "\n", "\"", "0x10", "\x00", "true"]
+    for k in range(16):
+        chars = list(text)
+        for _ in range(int(rng.integers(1, 6))):
+            i = int(rng.integers(0, len(chars)))
+            if rng.random() < 0.5:
+                chars[i] = tokens[int(rng.integers(0, len(tokens)))]
+            else:
+                del chars[i:i + int(rng.integers(1, 40))]
+        case = tmp_path / f"case{k}.csv"
+        case.write_text("".join(chars))
+        out = tmp_path / f"case{k}.png"
+        r = run("sweep", case, out)
+        assert r.returncode in (0, 2), (k, r.stderr)
+        assert "Traceback" not in r.stderr, (k, r.stderr)
+        if r.returncode == 2:
+            assert len(r.stderr.splitlines()) == 1 and r.stderr.startswith("plot: error:"), (k, r.stderr)
+            assert not out.exists()
+        else:
+            assert out.stat().st_size > 0

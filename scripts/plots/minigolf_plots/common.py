@@ -2,6 +2,7 @@
 import csv
 import math
 import os
+import stat
 import tempfile
 
 import matplotlib
@@ -153,12 +154,27 @@ def edges(centres):
 
 
 def save(fig, path, dpi=DPI):
-    """Writes the figure as PNG atomically: a temp file in the same directory, then os.replace."""
+    """Writes the figure as PNG atomically: a temp file in the same directory, then os.replace.
+
+    Like the C++ writers, it never replaces what is not a regular file (a link, FIFO, device or
+    folder) and names an unwritable folder in one line."""
     directory = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(directory):
+    try:
+        if not os.path.isdir(directory):
+            raise PlotError(f"{path}: output directory '{directory}' does not exist")
+        try:
+            mode = os.lstat(path).st_mode
+        except FileNotFoundError:
+            mode = None
+        if mode is not None and not stat.S_ISREG(mode):
+            raise PlotError(f"{path}: exists and is not a regular file; refusing to replace it")
+        try:
+            fd, tmp = tempfile.mkstemp(dir=directory, prefix=".plot-", suffix=".png")
+        except OSError as e:
+            raise PlotError(f"{path}: cannot write in '{directory}': {e.strerror}") from None
+    except PlotError:
         plt.close(fig)
-        raise PlotError(f"{path}: output directory '{directory}' does not exist")
-    fd, tmp = tempfile.mkstemp(dir=directory, prefix=".plot-", suffix=".png")
+        raise
     mask = os.umask(0)
     os.umask(mask)
     try:

@@ -189,6 +189,10 @@ class PuttEnv(_Base):
             hole = np.asarray(options["hole"], dtype=np.float64)
             if hole.shape != (2,) or not np.all(np.isfinite(hole)):
                 raise ValueError(f"PuttEnv.reset: options['hole']: expected (x, y) [m], got {options['hole']!r}")
+            try:
+                system.field.check_hole((float(hole[0]), float(hole[1])))
+            except ValueError as e:
+                raise ValueError(f"PuttEnv.reset: options['hole']: {e}") from None
         self._hole = np.asarray(hole, dtype=np.float64)
         self._done = False
         return self._observation(), {"hole": tuple(self._hole), "field": system.field.name}
