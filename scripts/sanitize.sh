@@ -36,7 +36,7 @@ if [[ $what == ci ]]; then
   export LSAN_OPTIONS="suppressions=$PWD/scripts/sanitize.supp:print_suppressions=0"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   suites='Csv|Io|IoSignals|Surface|Field|Situations|Plant|LearningDataset|LearningModel|LearningCli'
-  suites+='|VisionMessage|Udp|VisionFeed|NetworkPerception|Session|Robustness|ConsoleCommand|FieldCommand|PlantCommand'
+  suites+='|VisionMessage|Udp|VisionFeed|NetworkPerception|Session|Robustness|ConsoleCommand|FieldCommand|PlantCommands'
   (cd build-asan-ci && nice -n 10 ctest -j"$jobs" --output-on-failure --timeout 1200 -R "^(($suites)\.|fuzz_)" \
      -E '_NOT_BUILT$')
   echo "sanitize.sh: ci (ASan + UBSan, parsers, session, fuzz replays): build $((built - start)) s," \
