@@ -11,5 +11,4 @@ MG_FUZZ_TARGET({
                                                "fuzz.json");
   const auto p = mg::learning::predict(m, Eigen::MatrixXd::Ones(1, m.num_inputs()));
   (void)mg::learning::beyond_training(m, p);
-  if (const double* v = m.fixed_value("speed")) (void)*v;
 })
