@@ -12,7 +12,6 @@
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "system/system.hpp"
-#include "core/check.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "ds/hitting_model.hpp"
@@ -50,7 +49,6 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
                           const std::string& plant_path, bool json, const std::string& trajectory_path) {
   const system::System sys(system::load_config(config_path, field_name, model_path), load_plant_arg(plant_path));
   sys.check_request(angle, speed, "putt");
-  require_in_range("putt: max_duration [s]", max_duration, 0.01, 600.0);
   const auto hole = hole_text.empty() ? sys.field().hole.position : parse_vector<2>("--hole", hole_text);
   system::SystemData data(sys);
   control::FullPuttOptions options;

@@ -18,7 +18,6 @@
 #include <fmt/format.h>
 #include <mujoco/mujoco.h>
 
-#include "core/check.hpp"
 #include "core/error.hpp"
 #include "ds/hitting_ds.hpp"
 #include "ds/hitting_model.hpp"
@@ -189,7 +188,6 @@ PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle,
   }
   // as `minigolf putt` (the arm)
   sys.check_request(angle, speed, "putt");
-  require_in_range("putt: max_duration [s]", max_duration, 0.01, 600.0);
   control::FullPuttOptions options;
   options.max_duration = max_duration;
   options.record_interval = record_interval;
