@@ -28,16 +28,16 @@ def features(xi):
 def play(env, weights, episodes, seed, noise=None, rng=None):
     """Returns (features, actions, rewards, closest approaches) of `episodes` episodes from `seed`."""
     rows, actions, rewards, closest = [], [], [], []
-    obs, _ = env.reset(seed=seed)
+    _, info = env.reset(seed=seed)
     for _ in range(episodes):
-        phi = features(obs)
+        phi = features(info["xi"])  # both coordinates (the observation leaves out a constant one)
         a = phi @ weights
         if noise is not None:
             a = a + rng.normal(0.0, noise)
         a = np.clip(a, env.action_space.low, env.action_space.high)
         _, reward, _, _, info = env.step(a)
         rows.append(phi), actions.append(a), rewards.append(reward), closest.append(info["closest_approach"])
-        obs, _ = env.reset()
+        _, info = env.reset()
     return np.array(rows), np.array(actions), np.array(rewards), np.nan_to_num(np.array(closest), nan=1.0)
 
 

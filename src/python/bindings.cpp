@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -32,9 +33,12 @@
 #include "system/distributed.hpp"
 #include "system/system.hpp"
 #include "teacher/teacher.hpp"
+#include "python/py_data.hpp"
 
 namespace py = pybind11;
 using namespace mg;
+using python::Data;
+using python::data_of;
 
 namespace {
 
@@ -76,18 +80,6 @@ py::array_t<double> points(const std::vector<std::array<double, 2>>& p) {
 
 // ---- worlds and their MuJoCo data
 
-/// An mjData of a world: owned (World.make_data) or borrowed from a SystemData.
-struct Data {
-  const sim::World* world = nullptr;
-  sim::DataPtr owned;
-  mjData* d = nullptr;
-};
-
-/// Throws unless `d` is an mjData of `w` (another world's would be read out of bounds).
-mjData* data_of(const sim::World& w, const Data& d) {
-  if (d.world != &w) throw InputError("World: this Data belongs to another world (use that world's make_data)");
-  return d.d;
-}
 
 /// A SystemData that refuses to be used by two threads at once.
 struct PySystemData {
@@ -235,6 +227,22 @@ teacher::TeacherOptions teacher_options(const system::System& sys, const std::st
   return t;
 }
 
+std::array<double, 4> region_bounds(const field::Situations& s) {
+  std::vector<std::array<double, 2>> corners;
+  switch (s.shape) {
+    case field::RegionShape::kLine: corners = {s.from, s.to}; break;
+    case field::RegionShape::kGrid:
+    case field::RegionShape::kBox: corners = {{s.x_range[0], s.y_range[0]}, {s.x_range[1], s.y_range[1]}}; break;
+    case field::RegionShape::kList: corners = s.points; break;
+  }
+  std::array<double, 4> b{corners.at(0)[0], corners.at(0)[0], corners.at(0)[1], corners.at(0)[1]};
+  for (const auto& c : corners) {
+    b[0] = std::min(b[0], c[0]), b[1] = std::max(b[1], c[0]);
+    b[2] = std::min(b[2], c[1]), b[3] = std::max(b[3], c[1]);
+  }
+  return b;
+}
+
 field::Situations region_of(const field::Field& f, const std::string& spec) {
   field::Situations r = spec.empty() ? f.situations : field::parse_situations_spec(spec, f.situations);
   r.validate(f, spec.empty() ? "" : fmt::format("--situations '{}'", spec));
@@ -277,7 +285,9 @@ PYBIND11_MODULE(_minigolf, m) {
              if (n < 0) throw InputError(fmt::format("sample: n: expected >= 0, got {}", n));
              return points(s.sample(n, seed));
            }, py::arg("n"), py::arg("seed") = 1,
-           "`n` test situations drawn uniformly from the region with `seed`, (n, 2) [m]");
+           "`n` test situations drawn uniformly from the region with `seed`, (n, 2) [m]")
+      .def_property_readonly("bounds", [](const field::Situations& s) { return region_bounds(s); },
+                             "(x_min, x_max, y_min, y_max) [m] of every hole the region holds or samples");
 
   py::class_<field::Field>(m, "Field", "A minigolf lane: bounds, surface, tee, hole, ball, resistances.")
       .def_static("load", [](const std::string& name) { return field::load_field(name); }, py::arg("name_or_path"),
@@ -297,6 +307,10 @@ PYBIND11_MODULE(_minigolf, m) {
       .def_readonly("rolling_resistance", &field::Field::rolling_resistance, "Penner's rho [-]")
       .def_readonly("sliding_friction", &field::Field::sliding_friction, "Ball-lane Coulomb friction [-]")
       .def_readonly("situations", &field::Field::situations)
+      .def("region", [](const field::Field& f, const std::string& spec) { return region_of(f, spec); },
+           py::arg("spec") = "",
+           "The field's region of situations, or the one of `spec` (as `--situations`: line:X0,Y0:X1,Y1:N, "
+           "grid:X0,X1:Y0,Y1:NX,NY, box:..., list:X,Y;X,Y), checked against the lane (ValueError)")
       .def("check_hole", [](const field::Field& f, std::array<double, 2> hole) { field::check_hole_position(f, hole); },
            py::arg("hole"), "Raises ValueError unless a hole at (x, y) [m] lies on the lane and off the tee")
       .def("height", [](const field::Field& f, py::object x, py::object y) -> py::object {
@@ -715,4 +729,6 @@ PYBIND11_MODULE(_minigolf, m) {
            "Integrates the DS (RK4, step dt [s]) from `start` [m, world] for hitting angle [rad] and speed [m/s] "
            "until the ball is reached: dict with reached, stop_reason, position_error [m], duration [s], t (N,) [s], "
            "x (N, 3) [m], xdot (N, 3) [m/s]. Releases the GIL.");
+
+  python::bind_render(m);
 }

@@ -76,6 +76,21 @@ GlWindow::~GlWindow() {
   glfwTerminate();
 }
 
+void GlWindow::make_current() { glfwMakeContextCurrent(window_); }
+
+std::array<int, 2> GlWindow::framebuffer_size() const {
+  int w = 0, h = 0;
+  glfwGetFramebufferSize(window_, &w, &h);
+  return {w, h};
+}
+
+void GlWindow::present() {
+  glfwSwapBuffers(window_);
+  glfwPollEvents();
+}
+
+bool GlWindow::should_close() const { return glfwWindowShouldClose(window_) != 0; }
+
 Pose capture_pose(const mjModel* m, const mjData* d) {
   Pose p;
   p.time = d->time;

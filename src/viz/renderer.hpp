@@ -29,6 +29,14 @@ class GlWindow {
   GlWindow(const GlWindow&) = delete;
   GlWindow& operator=(const GlWindow&) = delete;
   GLFWwindow* handle() const { return window_; }
+  /// Makes this window's OpenGL context current on the calling thread.
+  void make_current();
+  /// The framebuffer's size [pixels] (the window's, times the screen's scale).
+  std::array<int, 2> framebuffer_size() const;
+  /// Shows what was drawn (visible windows) and handles the window's events.
+  void present();
+  /// True once the user asked to close the window.
+  bool should_close() const;
 
  private:
   GLFWwindow* window_ = nullptr;

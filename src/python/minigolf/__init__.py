@@ -8,8 +8,10 @@ minigolf.NumericalError (an algorithm could not deliver), with the messages of t
     >>> r = system.putt(angle=0.0, speed=1.2, ball_only=True)
     >>> r.sunk, r.trajectory.shape            # doctest: +SKIP
 
-The Gymnasium-style environment is `minigolf.env.PuttEnv`.
+The Gymnasium environment is `minigolf.env.PuttEnv`; `minigolf.make("minigolf/PuttBall-v0")` (or
+`gymnasium.make`, when gymnasium is installed: the ids are registered on import) builds one.
 """
+from . import _paths  # noqa: F401  (before the extension: it sets the data folder)
 from ._minigolf import (  # noqa: F401
     Data,
     Evaluation,
@@ -22,6 +24,7 @@ from ._minigolf import (  # noqa: F401
     Situations,
     System,
     SystemData,
+    Renderer,
     World,
     load_dataset,
     mpi_built,
@@ -37,3 +40,6 @@ def putt(angle, speed, field="flat", ball_only=False, **kwargs):
 
 
 from . import env  # noqa: E402,F401
+from .env import make  # noqa: E402,F401
+
+env.register_envs()

@@ -1,44 +1,72 @@
-"""A Gymnasium-compatible minigolf environment: one putt per episode.
+"""A Gymnasium environment of minigolf: one putt per episode (docs/python.md).
 
-    env = PuttEnv(field="flat")
-    obs, info = env.reset(seed=0)          # obs: the situation xi = hole - tee [m]
+    import minigolf
+    env = minigolf.make("minigolf/PuttBall-v0")     # or gymnasium.make(...) when gymnasium is installed
+    obs, info = env.reset(seed=0)
     obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
 
-Observation: xi = (hole_x - tee_x, hole_y - tee_y) [m]; with several fields (or observe_field=True)
-also the field's index (a float) as a third entry. The hole is drawn uniformly from the field's
-region of situations (the library's own sampler, seeded from the environment's generator).
-Action: (theta [rad], v [m/s]) inside the module's safe envelope (the arm: hitting angle and club
-speed; mode="ball": the ball's launch angle and speed, same bounds); actions outside the box are
-clipped to it (info["clipped"]). Reward: 1.0 if the ball is sunk, else 0.0; every episode
-terminates after its putt (truncated is always False). info: closest_approach [m], rest_position
-[m], end, hole [m], field, action (as putted).
+Registered ids (`REGISTERED`): "minigolf/Putt-v0" (the WAM hits the ball) and
+"minigolf/PuttBall-v0" (the ball alone, fast), both with a normalised action space and shaped
+rewards, `max_episode_steps=1`.
 
-When `gymnasium` can be imported the class subclasses `gymnasium.Env` and its spaces are
-`gymnasium.spaces.Box`; otherwise it provides the same interface with the `Box` below. The
-generator is numpy's `default_rng(seed)` either way (what Gymnasium's seeding makes), so a seed
-gives the same episodes with or without Gymnasium.
+Observation (float32): the coordinates of xi = hole - tee [m] that vary over the environment's
+situations (`observation_names`: "xi_x", "xi_y"; a coordinate that is the same for every situation,
+as xi_x on the flat field's line, is left out: a zero-width dimension breaks rescaling wrappers),
+then the field's index when there are several fields (or observe_field=True). A region of a single
+hole keeps both coordinates, widened by 1 cm each way. info["xi"] always holds both.
+Action (float32): (theta [rad], v [m/s]) inside the module's safe envelope (the arm: hitting angle
+and club speed; mode="ball": the ball's launch angle and speed, the same bounds), or, with
+normalize_actions=True, [-1, 1]^2 mapped linearly onto it (-1 and 1 exactly onto its ends). Actions
+outside are clipped to [-1, 1] or to the envelope (info["clipped"]: the putt played differs from the
+action); info["action"] is the putt as played, in physical units.
+Reward: reward="sparse": 1 if the ball is sunk, else 0. reward="shaped": 1 if sunk, else
+-closest_approach / reward_scale (the ball's closest approach to the hole [m]; a club that missed
+the ball counts the tee's distance). info["reward_parts"] = {"sunk", "approach"} sum to the reward.
+Rendering: render_mode "rgb_array" (the current frame: the ball on the tee, or where it stopped with
+its path), "rgb_array_list" (every frame of the putt at render_fps since the last render), "human"
+(a window: step plays the putt). Frames come from MuJoCo's renderer through GLFW, which needs a
+display: on a server run under `xvfb-run -a`.
+
+When `gymnasium` imports, PuttEnv subclasses `gymnasium.Env` with `gymnasium.spaces.Box` spaces and
+the ids are registered with gymnasium; otherwise `minigolf.env.Box` and `minigolf.make` give the
+same interface. The generator is numpy's `default_rng(seed)` either way (what Gymnasium's seeding
+makes), so a seed gives the same episodes with or without Gymnasium. Environments pickle (the
+System is rebuilt from the constructor's arguments) and deepcopy, so AsyncVectorEnv works with
+any start method.
 """
 from __future__ import annotations
 
+import time
 from typing import Any, Optional, Sequence
 
 import numpy as np
 
 from . import _minigolf
 
-try:  # pragma: no cover - gymnasium is not in Debian 12
+try:  # gymnasium is not in Debian 12: users install it
     import gymnasium as _gym
     from gymnasium.spaces import Box as _GymBox
 except ImportError:  # the same interface without it
     _gym = None
     _GymBox = None
 
+#: The registered ids and their constructor arguments (gymnasium.make or minigolf.make).
+REGISTERED = {
+    "minigolf/Putt-v0": dict(mode="arm", normalize_actions=True, reward="shaped"),
+    "minigolf/PuttBall-v0": dict(mode="ball", normalize_actions=True, reward="shaped"),
+}
+MAX_EPISODE_STEPS = 1  # one putt per episode
+
+_CONSTANT = 1e-9   # [m] a coordinate spanning less is constant over the situations
+_WIDEN = 0.01      # [m] each way, for a region of a single hole
+_UNPICKLED = ("systems", "_data", "_regions", "_renderer")
+
 
 class Box:
     """A box in R^n (Gymnasium's `spaces.Box` interface: shape, dtype, low, high, seed(),
     sample(), contains(), `in`)."""
 
-    def __init__(self, low, high, shape: Optional[Sequence[int]] = None, dtype=np.float64, seed=None):
+    def __init__(self, low, high, shape: Optional[Sequence[int]] = None, dtype=np.float32, seed=None):
         self.dtype = np.dtype(dtype)
         low = np.asarray(low, dtype=self.dtype)
         high = np.asarray(high, dtype=self.dtype)
@@ -102,51 +130,130 @@ _Base = _gym.Env if _gym is not None else object
 _Space = _GymBox if _GymBox is not None else Box
 
 
+def _float32_inside(low, high):
+    """float32 bounds inside [low, high] (every float32 action between them lies in the envelope)."""
+    lo, hi = np.asarray(low, np.float32), np.asarray(high, np.float32)
+    lo = np.where(lo.astype(np.float64) < low, np.nextafter(lo, np.float32(np.inf)), lo)
+    hi = np.where(hi.astype(np.float64) > high, np.nextafter(hi, np.float32(-np.inf)), hi)
+    return lo.astype(np.float32), hi.astype(np.float32)
+
+
+def _float32_around(low, high):
+    """float32 bounds around [low, high] (every float64 value between them rounds into the box)."""
+    lo, hi = np.asarray(low, np.float32), np.asarray(high, np.float32)
+    lo = np.where(lo.astype(np.float64) > low, np.nextafter(lo, np.float32(-np.inf)), lo)
+    hi = np.where(hi.astype(np.float64) < high, np.nextafter(hi, np.float32(np.inf)), hi)
+    return lo.astype(np.float32), hi.astype(np.float32)
+
+
 class PuttEnv(_Base):
     """One putt per episode on the simulated WAM (see the module docstring).
 
     field: a shipped field name or path, or a sequence of them (each episode draws one).
     mode: "arm" (the full system: the WAM hits the ball) or "ball" (the ball alone: fast).
+    situations: where holes are drawn (a `--situations` spec, e.g. "box:1.5,2.5:-0.3,0.3:3,3";
+        default: each field's own region).
+    normalize_actions: the action space is [-1, 1]^2, mapped linearly onto the safe envelope.
+    reward: "sparse" (1 sunk / 0) or "shaped" (1 sunk, else -closest_approach / reward_scale [m]).
     observe_field: append the field's index to the observation (default: with several fields).
     config, hitting_model, plant: as for `minigolf.System` (plant: the world as it really is).
     max_duration: of the ball's roll [s].
+    render_mode: None, "rgb_array", "rgb_array_list" or "human"; render_size (width, height)
+        [pixels]; camera: "overview", "side", "top" or "follow".
     """
 
-    metadata = {"render_modes": []}
+    metadata = {"render_modes": ["rgb_array", "rgb_array_list", "human"], "render_fps": 30}
 
     def __init__(self, field="flat", mode: str = "arm", observe_field: Optional[bool] = None,
                  config: str = "", hitting_model: str = "", max_duration: float = 30.0,
-                 render_mode: Optional[str] = None, plant: str = ""):
+                 render_mode: Optional[str] = None, plant: str = "", normalize_actions: bool = False,
+                 reward: str = "sparse", reward_scale: float = 1.0, situations: str = "",
+                 render_size: Sequence[int] = (640, 480), camera: str = "overview"):
+        self._init_kwargs = dict(field=field, mode=mode, observe_field=observe_field, config=config,
+                                 hitting_model=hitting_model, max_duration=max_duration,
+                                 render_mode=render_mode, plant=plant, normalize_actions=normalize_actions,
+                                 reward=reward, reward_scale=reward_scale, situations=situations,
+                                 render_size=tuple(render_size), camera=camera)
         if mode not in ("arm", "ball"):
             raise ValueError(f"PuttEnv: mode: expected 'arm' or 'ball', got '{mode}'")
-        if render_mode is not None:
-            raise ValueError(f"PuttEnv: render_mode: expected None (no rendering), got '{render_mode}'")
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"PuttEnv: render_mode: expected None or one of {self.metadata['render_modes']}, "
+                             f"got '{render_mode}'")
+        if reward not in ("sparse", "shaped"):
+            raise ValueError(f"PuttEnv: reward: expected 'sparse' or 'shaped', got '{reward}'")
+        if not (isinstance(reward_scale, (int, float)) and np.isfinite(reward_scale) and 1e-3 <= reward_scale <= 100):
+            raise ValueError(f"PuttEnv: reward_scale: expected a length in [0.001, 100] m, got {reward_scale!r}")
+        if not (np.isfinite(max_duration) and 0.01 <= max_duration <= 600):
+            raise ValueError(f"PuttEnv: max_duration: expected a value in [0.01, 600] s, got {max_duration!r}")
+        if camera not in ("overview", "side", "top", "follow"):
+            raise ValueError(f"PuttEnv: camera: expected overview, side, top or follow, got '{camera}'")
+        size = tuple(render_size)
+        if len(size) != 2 or not all(isinstance(v, (int, np.integer)) and 16 <= v <= 4096 for v in size):
+            raise ValueError(f"PuttEnv: render_size: expected (width, height), 16..4096 pixels each, got {render_size!r}")
         names = [field] if isinstance(field, str) else list(field)
         if not names:
             raise ValueError("PuttEnv: field: expected at least one field")
-        self.render_mode = None
+        self.render_mode = render_mode
         self.mode = mode
+        self.reward_mode = reward
+        self.reward_scale = float(reward_scale)
         self.max_duration = float(max_duration)
-        self.systems = [_minigolf.System(field=n, config=config, hitting_model=hitting_model, plant=plant)
-                        for n in names]
-        self._data = [s.make_data() for s in self.systems]
+        self.normalize_actions = bool(normalize_actions)
+        self._build_systems()
         self.observe_field = len(names) > 1 if observe_field is None else bool(observe_field)
-        lows, highs = [], []
-        for s in self.systems:
-            xi = s.field.situations.collection_points() - np.asarray(s.field.tee)
-            lows.append(xi.min(axis=0))
-            highs.append(xi.max(axis=0))
-        low, high = np.min(lows, axis=0), np.max(highs, axis=0)
-        if self.observe_field:
-            low, high = np.append(low, 0.0), np.append(high, float(len(names) - 1))
-        self.observation_space = _Space(low=low, high=high, dtype=np.float64)
-        e = self.systems[0].envelope
-        self.action_space = _Space(low=np.array([e["angle_min"], e["speed_min"]]),
-                                   high=np.array([e["angle_max"], e["speed_max"]]), dtype=np.float64)
+        self._set_spaces()
         self._np_random = None
         self._field = 0
         self._hole = np.asarray(self.systems[0].field.hole_position, dtype=np.float64)
         self._done = True
+        self._trajectory = None   # (N, 7) of the last putt: t, x, y, z, vx, vy, vz
+        self._frames = []
+
+    # ---- construction (also what unpickling rebuilds)
+    def _build_systems(self):
+        k = self._init_kwargs
+        names = [k["field"]] if isinstance(k["field"], str) else list(k["field"])
+        self.systems = [_minigolf.System(field=n, config=k["config"], hitting_model=k["hitting_model"],
+                                         plant=k["plant"]) for n in names]
+        self._data = [s.make_data() for s in self.systems]
+        self._regions = [s.field.region(k["situations"]) for s in self.systems]
+        self._renderer = None
+
+    def _set_spaces(self):
+        tees = [np.asarray(s.field.tee, dtype=np.float64) for s in self.systems]
+        lows = [np.array(r.bounds)[[0, 2]] - t for r, t in zip(self._regions, tees)]
+        highs = [np.array(r.bounds)[[1, 3]] - t for r, t in zip(self._regions, tees)]
+        low, high = np.min(lows, axis=0), np.max(highs, axis=0)
+        self._xi_low, self._xi_high = low, high
+        varying = high - low > _CONSTANT
+        if not varying.any():  # one hole: both coordinates, widened
+            varying[:] = True
+            low, high = low - _WIDEN, high + _WIDEN
+        self._kept = np.flatnonzero(varying)
+        names = [("xi_x", "xi_y")[i] for i in self._kept]
+        low, high = low[self._kept], high[self._kept]
+        if self.observe_field:
+            low, high = np.append(low, 0.0), np.append(high, float(len(self.systems) - 1))
+            names.append("field")
+        self.observation_names = tuple(names)
+        olow, ohigh = _float32_around(low, high)
+        self.observation_space = _Space(low=olow, high=ohigh, dtype=np.float32)
+        e = self.systems[0].envelope
+        self._envelope_low = np.array([e["angle_min"], e["speed_min"]], dtype=np.float64)
+        self._envelope_high = np.array([e["angle_max"], e["speed_max"]], dtype=np.float64)
+        if self.normalize_actions:
+            alow, ahigh = np.full(2, -1.0, np.float32), np.full(2, 1.0, np.float32)
+        else:
+            alow, ahigh = _float32_inside(self._envelope_low, self._envelope_high)
+        self.action_space = _Space(low=alow, high=ahigh, dtype=np.float32)
+
+    # ---- pickling: the System and its MuJoCo data are rebuilt from the constructor's arguments
+    def __getstate__(self):
+        return {k: v for k, v in self.__dict__.items() if k not in _UNPICKLED}
+
+    def __setstate__(self, state):
+        self.__dict__.update(state)
+        self._build_systems()
 
     # Gymnasium's Env provides np_random; the same without it.
     if _gym is None:
@@ -160,69 +267,232 @@ class PuttEnv(_Base):
         def unwrapped(self):
             return self
 
-    def _observation(self) -> np.ndarray:
-        xi = self._hole - np.asarray(self.systems[self._field].field.tee)
-        if self.observe_field:
-            xi = np.append(xi, float(self._field))
-        return xi.astype(np.float64)
+    # ---- the action and observation maps
+    def to_physical(self, action) -> np.ndarray:
+        """(theta [rad], v [m/s]) of an action (clipped into [-1, 1], or into the safe envelope)."""
+        a = np.asarray(action, dtype=np.float64)
+        if self.normalize_actions:
+            a = np.clip(a, -1.0, 1.0)
+            a = 0.5 * (1.0 - a) * self._envelope_low + 0.5 * (1.0 + a) * self._envelope_high  # exact at -1, 1
+        return np.clip(a, self._envelope_low, self._envelope_high)
 
+    def from_physical(self, putt) -> np.ndarray:
+        """The action that plays (theta [rad], v [m/s]) (inverse of to_physical inside the envelope)."""
+        p = np.asarray(putt, dtype=np.float64)
+        if self.normalize_actions:
+            p = 2.0 * (p - self._envelope_low) / (self._envelope_high - self._envelope_low) - 1.0
+        return np.clip(p, self.action_space.low, self.action_space.high).astype(np.float32)
+
+    def _xi(self) -> np.ndarray:
+        return self._hole - np.asarray(self.systems[self._field].field.tee, dtype=np.float64)
+
+    def _observation(self) -> np.ndarray:
+        obs = self._xi()[self._kept]
+        if self.observe_field:
+            obs = np.append(obs, float(self._field))
+        return np.clip(obs.astype(np.float32), self.observation_space.low, self.observation_space.high)
+
+    def _check_hole(self, system, region_index, hole):
+        try:
+            system.field.check_hole((float(hole[0]), float(hole[1])))
+        except ValueError as e:
+            raise ValueError(f"PuttEnv.reset: options['hole']: {e}") from None
+        xi = hole - np.asarray(system.field.tee, dtype=np.float64)
+        b = self._regions[region_index].bounds
+        if np.any(xi < self._xi_low - 1e-9) or np.any(xi > self._xi_high + 1e-9):
+            raise ValueError(
+                f"PuttEnv.reset: options['hole']: ({hole[0]:g}, {hole[1]:g}) lies outside this environment's "
+                f"situations (holes x {b[0]:g}..{b[1]:g}, y {b[2]:g}..{b[3]:g} m on {system.field.name}); "
+                f"make the environment with situations='box:X0,X1:Y0,Y1:NX,NY' to widen them")
+
+    # ---- the Gymnasium API
     def reset(self, *, seed: Optional[int] = None, options: Optional[dict] = None):
         """Starts an episode: draws a field and a hole (options: "field" index, "hole" (x, y) [m]
-        to choose them). Returns (observation, info)."""
+        to choose them; a hole is checked against the lane and the situations). Returns
+        (observation, info)."""
         if _gym is not None:
             super().reset(seed=seed)
         elif seed is not None or self._np_random is None:
             self._np_random = np.random.default_rng(seed)
         options = options or {}
+        unknown = set(options) - {"field", "hole"}
+        if unknown:
+            raise ValueError(f"PuttEnv.reset: options: unknown key(s) {sorted(unknown)} (expected 'field', 'hole')")
         rng = self.np_random
         n = len(self.systems)
         self._field = int(rng.integers(n)) if n > 1 else 0
         if "field" in options:
             k = options["field"]
-            if not isinstance(k, (int, np.integer)) or not 0 <= k < n:
+            if not isinstance(k, (int, np.integer)) or isinstance(k, bool) or not 0 <= k < n:
                 raise ValueError(f"PuttEnv.reset: options['field']: expected an index 0..{n - 1}, got {k!r}")
             self._field = int(k)
         system = self.systems[self._field]
         stream = int(rng.integers(0, 2**63 - 1))
-        hole = system.field.situations.sample(1, stream)[0]
+        hole = self._regions[self._field].sample(1, stream)[0]
         if "hole" in options:
-            hole = np.asarray(options["hole"], dtype=np.float64)
-            if hole.shape != (2,) or not np.all(np.isfinite(hole)):
-                raise ValueError(f"PuttEnv.reset: options['hole']: expected (x, y) [m], got {options['hole']!r}")
             try:
-                system.field.check_hole((float(hole[0]), float(hole[1])))
-            except ValueError as e:
-                raise ValueError(f"PuttEnv.reset: options['hole']: {e}") from None
+                hole = np.asarray(options["hole"], dtype=np.float64)
+            except (TypeError, ValueError):
+                hole = None
+            if hole is None or hole.shape != (2,) or not np.all(np.isfinite(hole)):
+                raise ValueError(f"PuttEnv.reset: options['hole']: expected (x, y) [m], got {options['hole']!r}")
+            self._check_hole(system, self._field, hole)
         self._hole = np.asarray(hole, dtype=np.float64)
         self._done = False
-        return self._observation(), {"hole": tuple(self._hole), "field": system.field.name}
+        self._trajectory = None
+        self._frames = []
+        if self.render_mode in ("rgb_array_list", "human"):
+            self._emit(self._frame())
+        return self._observation(), {"hole": tuple(self._hole), "xi": tuple(self._xi()), "field": system.field.name}
 
     def step(self, action):
-        """Putts with (theta [rad], v [m/s]). Returns (obs, reward, terminated, truncated, info)."""
+        """Putts. Returns (obs, reward, terminated, truncated, info); the episode always terminates."""
         if self._done:
             raise RuntimeError("PuttEnv.step: the episode is over (one putt per episode); call reset()")
-        a = np.asarray(action, dtype=np.float64)
-        if a.shape != (2,) or not np.all(np.isfinite(a)):
-            raise ValueError(f"PuttEnv.step: action: expected finite (theta [rad], v [m/s]), got {action!r}")
-        clipped = np.clip(a, self.action_space.low, self.action_space.high)
-        system, data = self.systems[self._field], self._data[self._field]
-        info: dict[str, Any] = {"hole": tuple(self._hole), "field": system.field.name,
-                                "action": tuple(clipped), "clipped": bool(np.any(clipped != a))}
         try:
-            r = system.putt(float(clipped[0]), float(clipped[1]), hole=tuple(self._hole),
+            a = np.asarray(action, dtype=np.float64)
+        except (TypeError, ValueError):
+            a = None
+        if a is None or a.shape != (2,) or not np.all(np.isfinite(a)):
+            what = "[-1, 1]^2" if self.normalize_actions else "(theta [rad], v [m/s])"
+            raise ValueError(f"PuttEnv.step: action: expected finite {what} of shape (2,), got {action!r}")
+        putt = self.to_physical(a)
+        if self.normalize_actions:
+            clipped = bool(np.any(np.abs(a) > 1.0))
+        else:
+            clipped = bool(np.any(putt != a))
+        system, data = self.systems[self._field], self._data[self._field]
+        info: dict[str, Any] = {"hole": tuple(self._hole), "xi": tuple(self._xi()), "field": system.field.name,
+                                "action": tuple(putt), "clipped": clipped}
+        record = 1.0 / self.metadata["render_fps"] / 2 if self.render_mode is not None else 0.0
+        try:
+            r = system.putt(float(putt[0]), float(putt[1]), hole=tuple(self._hole),
                             ball_only=self.mode == "ball", max_duration=self.max_duration,
-                            record_interval=0.0, data=data)
-            sunk = r.sunk
-            info.update(closest_approach=r.closest_approach, rest_position=tuple(r.rest_position), end=r.end)
+                            record_interval=record, data=data)
+            sunk, approach = r.sunk, r.closest_approach
+            info.update(closest_approach=approach, rest_position=tuple(r.rest_position), end=r.end)
+            self._trajectory = r.trajectory if record > 0 else None
         except _minigolf.NumericalError as e:  # the club did not reach the ball: a miss
-            sunk = False
+            sunk, approach = False, float(np.hypot(*self._xi()))
             info.update(closest_approach=float("nan"), rest_position=tuple(system.field.tee), end="no contact",
                         error=str(e))
+            self._trajectory = None
+        if self.reward_mode == "sparse":
+            parts = {"sunk": 1.0 if sunk else 0.0, "approach": 0.0}
+        else:
+            parts = {"sunk": 1.0 if sunk else 0.0, "approach": 0.0 if sunk else -approach / self.reward_scale}
+        info["sunk"] = bool(sunk)
+        info["reward_parts"] = parts
         self._done = True
-        return self._observation(), 1.0 if sunk else 0.0, True, False, info
+        if self.render_mode in ("rgb_array_list", "human"):
+            self._play_putt()
+        return self._observation(), float(parts["sunk"] + parts["approach"]), True, False, info
+
+    # ---- rendering
+    def _ensure_renderer(self):
+        if self._renderer is None:
+            w, h = self._init_kwargs["render_size"]
+            self._renderer = _Renderers(self.systems, w, h, self.render_mode == "human", self._init_kwargs["camera"])
+        return self._renderer
+
+    def _frame(self, ball=None, path=None):
+        """The frame now, or with the ball at `ball` [m] and `path` drawn (None in human mode: the
+        frame went to the window)."""
+        renderers = self._ensure_renderer()
+        if ball is None and self._trajectory is not None and len(self._trajectory):
+            path = self._trajectory[:, 1:4]
+            ball = tuple(path[-1])
+        arm_pose = self._data[self._field].arm if (self.mode == "arm" and self._done) else None
+        return renderers.draw(self._field, self._hole, arm_pose, ball, path)
+
+    def _emit(self, frame):
+        if self.render_mode == "rgb_array_list":
+            self._frames.append(frame)
+
+    def _play_putt(self):
+        """The putt's frames at render_fps: the ball along its recorded path."""
+        fps = self.metadata["render_fps"]
+        traj = self._trajectory
+        if traj is None or len(traj) == 0:
+            self._emit(self._frame())
+            return
+        t = traj[:, 0] - traj[0, 0]
+        start = time.monotonic()
+        for k, tk in enumerate(np.arange(0.0, t[-1] + 1e-9, 1.0 / fps)):
+            i = int(np.searchsorted(t, tk, side="right"))
+            ball = tuple(traj[max(i - 1, 0), 1:4])
+            frame = self._frame(ball=ball, path=traj[:max(i, 1), 1:4])
+            self._emit(frame)
+            if self.render_mode == "human":
+                time.sleep(max(0.0, start + (k + 1) / fps - time.monotonic()))
+        self._emit(self._frame())
 
     def render(self):
-        return None
+        """rgb_array: the current frame, (height, width, 3) uint8. rgb_array_list: the frames since
+        the last call (reset's and the putt's). human: draws the current frame in the window.
+        None without a render_mode."""
+        if self.render_mode is None:
+            return None
+        if self.render_mode == "rgb_array_list":
+            frames, self._frames = self._frames, []
+            return frames
+        return self._frame()
 
     def close(self):
-        pass
+        """Frees the renderer (its OpenGL context and window); the env can still putt and render."""
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+
+
+class _Renderers:
+    """One minigolf.Renderer per field (each draws its own world), and a Data per field holding the
+    start pose with the episode's hole."""
+
+    def __init__(self, systems, width, height, visible, camera):
+        self._systems = systems
+        self._renderers = [_minigolf.Renderer(s.arm_world, width, height, visible=visible, camera=camera)
+                           for s in systems]
+        self._start = [s.arm_world.make_data() for s in systems]
+        self.visible = visible
+        self.closed = False
+
+    def draw(self, k, hole, arm_pose, ball, path):
+        """The frame of field k (None for a window: drawn there). arm_pose: the arm's Data after
+        the hit (its hole is the episode's), else the start pose with `hole`."""
+        data = arm_pose
+        if data is None:
+            world, data = self._systems[k].arm_world, self._start[k]
+            world.reset(data)
+            world.set_hole(data, (float(hole[0]), float(hole[1])))
+        args = dict(ball=None if ball is None else tuple(float(c) for c in ball),
+                    path=np.zeros((0, 2)) if path is None else np.asarray(path, dtype=np.float64))
+        r = self._renderers[k]
+        if self.visible:
+            r.show(data, **args)
+            return None
+        return r.render(data, **args)
+
+    def close(self):
+        for r in self._renderers:
+            r.close()
+        self.closed = True
+
+
+def register_envs() -> bool:
+    """Registers REGISTERED with gymnasium (done on `import minigolf`). False without gymnasium."""
+    if _gym is None:
+        return False
+    for env_id, kwargs in REGISTERED.items():
+        if env_id not in _gym.registry:
+            _gym.register(id=env_id, entry_point="minigolf.env:PuttEnv", kwargs=dict(kwargs),
+                          max_episode_steps=MAX_EPISODE_STEPS)
+    return True
+
+
+def make(env_id: str, **kwargs) -> PuttEnv:
+    """A registered environment without gymnasium (gymnasium.make adds its wrappers: the order
+    enforcer, the passive checker and the one-step time limit). kwargs override the id's."""
+    if env_id not in REGISTERED:
+        raise ValueError(f"minigolf.make: unknown id '{env_id}' (expected one of {sorted(REGISTERED)})")
+    return PuttEnv(**{**REGISTERED[env_id], **kwargs})

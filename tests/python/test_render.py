@@ -1,0 +1,99 @@
+"""minigolf.Renderer and PuttEnv's render modes. Drawing needs a display: ctest runs this file under
+`xvfb-run -a` (python_render); without a display every test skips."""
+import os
+import pickle
+
+import numpy as np
+import pytest
+
+import minigolf
+from minigolf.env import PuttEnv
+
+pytestmark = pytest.mark.skipif(not os.environ.get("DISPLAY"), reason="no display (ctest runs this under xvfb-run)")
+
+SIZE = (160, 120)
+
+
+def test_the_renderer_draws_a_world_without_changing_it():
+    system = minigolf.System(field="flat")
+    data = system.make_data()
+    r = minigolf.Renderer(system.arm_world, *SIZE, camera="top")
+    qpos = np.array(data.arm.qpos)
+    on_tee = r.render(data.arm)
+    assert on_tee.shape == (SIZE[1], SIZE[0], 3) and on_tee.dtype == np.uint8
+    assert r.width == SIZE[0] and r.height == SIZE[1]
+    moved = r.render(data.arm, ball=(1.5, 0.2, 0.03), path=np.array([[0.0, 0.0], [1.5, 0.2]]))
+    assert np.count_nonzero(np.any(moved != on_tee, axis=2)) > 20  # the ball moved, the path is drawn
+    assert np.array_equal(np.array(data.arm.qpos), qpos)  # the drawn data is a copy
+    assert np.array_equal(r.render(data.arm), on_tee)  # deterministic
+    with pytest.raises(ValueError, match="another world"):
+        r.render(data.ball)
+    with pytest.raises(ValueError, match="path"):
+        r.render(data.arm, path=np.zeros((3, 4)))
+    with pytest.raises(ValueError, match="off screen"):
+        r.show(data.arm)
+    r.close(), r.close()
+    assert r.closed
+    with pytest.raises(ValueError, match="closed"):
+        r.render(data.arm)
+    with pytest.raises(ValueError, match="camera"):
+        minigolf.Renderer(system.arm_world, camera="nope")
+    with pytest.raises(ValueError, match="image size"):
+        minigolf.Renderer(system.arm_world, 8, 8)
+
+
+def run(env, seed, action):
+    obs, _ = env.reset(seed=seed)
+    return obs, env.step(np.asarray(action, dtype=np.float32))
+
+
+@pytest.mark.parametrize("mode", ["ball", "arm"])
+def test_rgb_array_frames_and_the_same_putt_as_without_rendering(mode):
+    action = [0.02, 1.6] if mode == "arm" else [0.0, 1.3]
+    plain = PuttEnv(field="flat", mode=mode)
+    drawn = PuttEnv(field="flat", mode=mode, render_mode="rgb_array", render_size=SIZE)
+    assert drawn.metadata["render_fps"] > 0 and "rgb_array" in drawn.metadata["render_modes"]
+    drawn.reset(seed=2)
+    start = drawn.render()
+    assert start.shape == (SIZE[1], SIZE[0], 3) and start.dtype == np.uint8
+    _, ref = run(plain, 2, action)
+    _, got = run(drawn, 2, action)
+    for k in ("closest_approach", "rest_position", "end", "sunk"):
+        assert ref[4][k] == got[4][k], k  # rendering never changes a putt
+    assert ref[1] == got[1]
+    end = drawn.render()
+    assert np.count_nonzero(np.any(end != start, axis=2)) > 20
+    drawn.close()
+    assert drawn._renderer is None
+    again = drawn.render()  # a closed env renders again with a new renderer
+    assert np.array_equal(again, end)
+    drawn.close()
+
+
+def test_rgb_array_list_has_every_frame_of_the_roll():
+    env = PuttEnv(field="arctan", mode="ball", render_mode="rgb_array_list", render_size=SIZE, camera="top")
+    env.reset(seed=1)
+    _, _, _, _, info = env.step(np.array([0.1, 1.8], dtype=np.float32))
+    frames = env.render()
+    roll = minigolf.System(field="arctan").putt(0.1, 1.8, hole=info["hole"], ball_only=True, record_interval=0.01)
+    duration = roll.trajectory[-1, 0] - roll.trajectory[0, 0]
+    fps = env.metadata["render_fps"]
+    # reset's frame, one per 1/fps of the roll (both ends), and the last
+    assert len(frames) == 1 + (int(np.floor(duration * fps + 1e-9)) + 1) + 1
+    assert all(f.shape == (SIZE[1], SIZE[0], 3) for f in frames)
+    changed = [np.count_nonzero(np.any(a != b, axis=2)) for a, b in zip(frames[1:], frames[2:])]
+    assert sum(c > 0 for c in changed) > len(changed) // 2  # the ball moves from frame to frame
+    assert env.render() == []  # handed over
+    env.close()
+
+
+def test_human_mode_plays_the_putt_in_a_window_and_the_env_still_pickles():
+    env = PuttEnv(field="flat", mode="ball", render_mode="human", render_size=SIZE)
+    env.reset(seed=0)
+    _, reward, terminated, _, _ = env.step(np.array([0.0, 0.6], dtype=np.float32))
+    assert terminated and env.render() is None
+    clone = pickle.loads(pickle.dumps(env))  # the window is not pickled; the clone opens its own
+    assert clone._renderer is None
+    clone.reset(seed=0)
+    assert clone.step(np.array([0.0, 0.6], dtype=np.float32))[1] == reward
+    env.close(), clone.close()
