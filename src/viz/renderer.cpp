@@ -49,14 +49,33 @@ void add_connector(mjvScene& scn, int type, double width, const std::array<doubl
   g->category = mjCAT_DECOR;
 }
 
-}  // namespace
-
-GlWindow::GlWindow(int width, int height, bool visible, const std::string& title) {
+/// GLFW is started once per process and stopped at its exit: glfwTerminate destroys every window
+/// (another GlWindow's too), and starting GLFW again right after stopping it failed now and then to
+/// reach Xvfb's display.
+void start_glfw() {
+  static std::mutex mutex;
+  static bool started = false;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (started) return;
   glfwSetErrorCallback(on_glfw_error);
   if (!glfwInit())
     throw Error(fmt::format("no display: GLFW cannot start ({}); run under `xvfb-run -a` on a "
                             "machine without a screen",
                             glfw_last_error));
+  started = true;
+  std::atexit(glfwTerminate);
+}
+
+}  // namespace
+
+void check_image_size(int width, int height) {
+  if (width < 16 || height < 16 || width > 4096 || height > 4096)
+    throw InputError(fmt::format("image size {}x{}: expected 16..4096 pixels each way", width, height));
+}
+
+GlWindow::GlWindow(int width, int height, bool visible, const std::string& title) {
+  check_image_size(width, height);
+  start_glfw();
   glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_DOUBLEBUFFER, visible ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_SAMPLES, 4);
@@ -73,7 +92,6 @@ GlWindow::GlWindow(int width, int height, bool visible, const std::string& title
 
 GlWindow::~GlWindow() {
   if (window_) glfwDestroyWindow(window_);
-  glfwTerminate();
 }
 
 void GlWindow::make_current() { glfwMakeContextCurrent(window_); }
@@ -160,8 +178,7 @@ Renderer::Renderer(const sim::World& world, int width, int height)
     : world_(world), width_(width), height_(height) {
   static std::once_flag handler;
   std::call_once(handler, [] { mju_user_error = on_mujoco_error; });
-  if (width < 16 || height < 16 || width > 4096 || height > 4096)
-    throw InputError(fmt::format("image size {}x{}: expected 16..4096 pixels each way", width, height));
+  check_image_size(width, height);
   m_ = mj_copyModel(nullptr, world.model());
   if (!m_) throw Error("renderer: cannot copy the model");
   m_->vis.global.offwidth = width;

@@ -20,8 +20,12 @@ struct GLFWwindow;
 
 namespace mg::viz {
 
-/// A GLFW window with a current OpenGL context. Throws Error (one line) when GLFW cannot start
-/// (no display) or the window cannot be made.
+/// InputError unless `width` x `height` is 16..4096 pixels each way.
+void check_image_size(int width, int height);
+
+/// A GLFW window with a current OpenGL context. Throws InputError for a bad size, Error (one line)
+/// when GLFW cannot start (no display) or the window cannot be made. GLFW stays started until the
+/// process exits, so windows may come and go and live side by side.
 class GlWindow {
  public:
   GlWindow(int width, int height, bool visible, const std::string& title);

@@ -32,8 +32,11 @@ def test_the_renderer_draws_a_world_without_changing_it():
         r.render(data.arm, path=np.zeros((3, 4)))
     with pytest.raises(ValueError, match="off screen"):
         r.show(data.arm)
+    other = minigolf.Renderer(system.arm_world, *SIZE, camera="top")
     r.close(), r.close()
     assert r.closed
+    assert np.array_equal(other.render(data.arm), on_tee)  # closing one renderer leaves the others
+    other.close()
     with pytest.raises(ValueError, match="closed"):
         r.render(data.arm)
     with pytest.raises(ValueError, match="camera"):
@@ -97,3 +100,48 @@ def test_human_mode_plays_the_putt_in_a_window_and_the_env_still_pickles():
     clone.reset(seed=0)
     assert clone.step(np.array([0.0, 0.6], dtype=np.float32))[1] == reward
     env.close(), clone.close()
+
+
+def check_render_return(mode, result):
+    """gymnasium.utils.passive_env_checker's rules for what render() returns in each mode."""
+    if mode == "human":
+        assert result is None
+    elif mode == "rgb_array":
+        assert isinstance(result, np.ndarray) and result.dtype == np.uint8
+        assert result.ndim == 3 and result.shape[2] == 3
+    elif mode.endswith("_list"):
+        assert isinstance(result, list)
+        for item in result:
+            check_render_return(mode[: -len("_list")], item)
+
+
+def check_render(env):
+    """env_render_passive_checker: declared modes and fps, the env's mode among them, the return."""
+    modes = env.metadata.get("render_modes")
+    assert isinstance(modes, (list, tuple)) and all(isinstance(m, str) for m in modes)
+    fps = env.metadata.get("render_fps")
+    assert isinstance(fps, (int, float, np.integer, np.floating)) and fps > 0
+    assert env.render_mode is None or env.render_mode in modes
+    result = env.render()
+    if env.render_mode is not None:
+        check_render_return(env.render_mode, result)
+
+
+@pytest.mark.parametrize("mode", PuttEnv.metadata["render_modes"])
+def test_every_declared_render_mode_follows_gymnasiums_rules(mode):
+    env = minigolf.make("minigolf/PuttBall-v0", render_mode=mode, render_size=SIZE)
+    env.reset(seed=0)
+    check_render(env)
+    env.step(env.action_space.sample())
+    check_render(env)
+    env.close(), env.close()  # closing twice is allowed
+
+
+def test_gymnasium_check_env_with_its_render_checks():
+    try:
+        import gymnasium as gym
+        from gymnasium.utils.env_checker import check_env
+    except ImportError:
+        pytest.skip("gymnasium is not installed (not in Debian 12); the rules above are its copy")
+    env = gym.make("minigolf/PuttBall-v0", render_mode="rgb_array", render_size=SIZE)
+    check_env(env.unwrapped)  # renders every declared mode through env.spec.make
