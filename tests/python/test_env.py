@@ -286,6 +286,10 @@ def test_reset_checks_the_hole_against_the_situations_and_widens_on_request():
         env.reset(seed=0, options={"hole_position": (2.0, 0.0)})
     with pytest.raises(ValueError, match="options\\['field'\\]"):
         env.reset(seed=0, options={"field": True})
+    multi = PuttEnv(field=["flat", "arctan"], mode="ball")  # each field's own situations count
+    multi.reset(seed=0, options={"field": 1, "hole": (2.1, 0.2)})
+    with pytest.raises(ValueError, match="on flat"):
+        multi.reset(seed=0, options={"field": 0, "hole": (2.1, 0.2)})
     wide = PuttEnv(field="flat", mode="ball", situations="box:1.5,2.5:-0.3,0.3:3,3")
     assert wide.observation_names == ("xi_x", "xi_y")
     obs, info = wide.reset(seed=0, options={"hole": (2.5, 0.0)})

@@ -297,9 +297,8 @@ class PuttEnv(_Base):
             system.field.check_hole((float(hole[0]), float(hole[1])))
         except ValueError as e:
             raise ValueError(f"PuttEnv.reset: options['hole']: {e}") from None
-        xi = hole - np.asarray(system.field.tee, dtype=np.float64)
-        b = self._regions[region_index].bounds
-        if np.any(xi < self._xi_low - 1e-9) or np.any(xi > self._xi_high + 1e-9):
+        b = self._regions[region_index].bounds  # this field's situations, not the union's
+        if not (b[0] - 1e-9 <= hole[0] <= b[1] + 1e-9 and b[2] - 1e-9 <= hole[1] <= b[3] + 1e-9):
             raise ValueError(
                 f"PuttEnv.reset: options['hole']: ({hole[0]:g}, {hole[1]:g}) lies outside this environment's "
                 f"situations (holes x {b[0]:g}..{b[1]:g}, y {b[2]:g}..{b[3]:g} m on {system.field.name}); "
