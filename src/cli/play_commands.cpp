@@ -65,14 +65,6 @@ std::vector<double> parse_range(const std::string& what, const std::string& text
   return experiments::linspace(lo, hi, static_cast<int>(n));
 }
 
-teacher::TeacherOptions teacher_options(const field::Situations& region, const std::string& strategy) {
-  teacher::TeacherOptions t;
-  t.strategy = teacher::parse_strategy(strategy.empty() ? region.strategy : strategy);
-  t.learn_speed = region.learn_speed;
-  t.fixed_speed = region.speed;
-  return t;
-}
-
 void add_sweep(CLI::App& app) {
   struct Args {
     SystemArgs sys;
@@ -117,19 +109,13 @@ void add_sweep(CLI::App& app) {
   });
 }
 
-field::Situations region_of(const field::Field& f, const std::string& spec) {
-  field::Situations r = spec.empty() ? f.situations : field::parse_situations_spec(spec, f.situations);
-  r.validate(f, spec.empty() ? "" : fmt::format("--situations '{}'", spec));
-  return r;
-}
-
 void add_collect(CLI::App& app) {
   struct Args {
     SystemArgs sys;
     std::string strategy, situations, out;
     std::uint64_t seed = 1;
     bool resume = false;
-    int max_full_putts = 40;
+    int max_full_putts = teacher::TeacherOptions{}.max_full_putts;
     int random = 0;
   };
   auto a = std::make_shared<Args>();
@@ -148,9 +134,9 @@ void add_collect(CLI::App& app) {
   cmd->add_option("-o,--output", a->out, "Data set CSV to write")->required();
   cmd->callback([a] {
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
-    const field::Situations region = region_of(sys.field(), a->situations);
+    const field::Situations region = field::region_from_spec(sys.field(), a->situations);
     experiments::CollectOptions o;
-    o.teacher = teacher_options(region, a->strategy);
+    o.teacher = teacher::options_for(region, a->strategy);
     o.teacher.max_full_putts = a->max_full_putts;
     o.seed = a->seed;
     o.threads = a->sys.threads;
@@ -210,13 +196,13 @@ void add_evaluate(CLI::App& app) {
     const learning::Model model = learning::load_model(a->model);
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
     experiments::check_playable_model(model, a->model, &sys);
-    const field::Situations region = region_of(sys.field(), a->situations_spec);
+    const field::Situations region = field::region_from_spec(sys.field(), a->situations_spec);
     experiments::EvaluateOptions o;
     o.situations = a->situations;
     o.seed = a->seed;
     o.threads = a->sys.threads;
     o.oracle = !a->no_oracle;
-    o.teacher = teacher_options(region, a->strategy);
+    o.teacher = teacher::options_for(region, a->strategy);
     o.perception_noise = a->perception_noise;
     o.torque_noise = a->torque_noise;
     if (a->learn) o.oracle = false;
@@ -316,7 +302,7 @@ void add_self_teach(CLI::App& app) {
     o.arrival_speed = a->arrival;
     o.validate();
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
-    field::Situations region = region_of(sys.field(), a->situations);
+    field::Situations region = field::region_from_spec(sys.field(), a->situations);
     if (!a->strategy.empty()) region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));
     Progress bar("self-teach", o.budget);
     const auto r = selfteach::self_teach(sys, region, o, [&](int done, int) { bar.update(done); });
@@ -382,8 +368,8 @@ void add_curves(CLI::App& app) {
     a->o.validate();
     check_output_file(a->out);  // before minutes of putts, not after
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
-    const field::Situations region = region_of(sys.field(), a->situations_spec);
-    a->o.teacher = teacher_options(region, "");
+    const field::Situations region = field::region_from_spec(sys.field(), a->situations_spec);
+    a->o.teacher = teacher::options_for(region, "");
     Progress bar("curves", a->o.seeds);
     const auto runs = experiments::learning_curves(sys, region, learner, a->o, [&](int done, int) { bar.update(done); });
     bar.finish();

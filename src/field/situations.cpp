@@ -175,6 +175,29 @@ void Situations::validate(const Field& field, const std::string& where_arg) cons
   }
 }
 
+std::array<double, 4> Situations::bounds() const {
+  std::vector<std::array<double, 2>> corners;
+  switch (shape) {
+    case RegionShape::kLine: corners = {from, to}; break;
+    case RegionShape::kGrid:
+    case RegionShape::kBox: corners = {{x_range[0], y_range[0]}, {x_range[1], y_range[1]}}; break;
+    case RegionShape::kList: corners = points; break;
+  }
+  if (corners.empty()) throw InputError("situations: an empty list of holes");
+  std::array<double, 4> b{corners[0][0], corners[0][0], corners[0][1], corners[0][1]};
+  for (const auto& c : corners) {
+    b[0] = std::min(b[0], c[0]), b[1] = std::max(b[1], c[0]);
+    b[2] = std::min(b[2], c[1]), b[3] = std::max(b[3], c[1]);
+  }
+  return b;
+}
+
+Situations region_from_spec(const Field& field, const std::string& spec) {
+  Situations r = spec.empty() ? field.situations : parse_situations_spec(spec, field.situations);
+  r.validate(field, spec.empty() ? "" : fmt::format("--situations '{}'", spec));
+  return r;
+}
+
 Situations default_situations(const Field& field) {
   Situations s;
   s.shape = RegionShape::kBox;

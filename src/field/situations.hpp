@@ -52,6 +52,8 @@ struct Situations {
   /// Throws InputError (naming `where`, default: the field file's situations) if a hole of the
   /// region leaves the field's lane, or a count or range is unusable.
   void validate(const Field& field, const std::string& where = "") const;
+  /// (x_min, x_max, y_min, y_max) [m] of every hole the region holds or samples.
+  std::array<double, 4> bounds() const;
 };
 
 /// The value of a learner input for a hole on `field`: xi_x, xi_y (hole - tee), hole_x or hole_y
@@ -65,5 +67,9 @@ Situations default_situations(const Field& field);
 ///   line:X0,Y0:X1,Y1:N | grid:X0,X1:Y0,Y1:NX,NY | box:X0,X1:Y0,Y1:NX,NY | list:X,Y;X,Y;...
 /// The outputs, speed and strategy are kept from `base`. Throws InputError.
 Situations parse_situations_spec(const std::string& spec, const Situations& base);
+
+/// The field's own region (empty `spec`) or the one of `spec`, validated against the lane (the
+/// `--situations` option of the CLI and the `situations` arguments of Python). InputError.
+Situations region_from_spec(const Field& field, const std::string& spec);
 
 }  // namespace mg::field

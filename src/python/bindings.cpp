@@ -212,13 +212,10 @@ std::vector<std::string> default_names(int n, const std::vector<std::string>& pr
   return names;
 }
 
+/// The teacher's options for the field's region, with the Python arguments' budgets and margins.
 teacher::TeacherOptions teacher_options(const system::System& sys, const std::string& strategy, int max_full_putts,
                                         int max_ball_putts, double margin_angle, double margin_speed) {
-  const auto& region = sys.field().situations;
-  teacher::TeacherOptions t;
-  t.strategy = teacher::parse_strategy(strategy.empty() ? region.strategy : strategy);
-  t.learn_speed = region.learn_speed;
-  t.fixed_speed = region.speed;
+  teacher::TeacherOptions t = teacher::options_for(sys.field().situations, strategy);
   t.max_full_putts = max_full_putts;
   t.max_ball_putts = max_ball_putts;
   t.margin_angle = margin_angle;
@@ -227,27 +224,7 @@ teacher::TeacherOptions teacher_options(const system::System& sys, const std::st
   return t;
 }
 
-std::array<double, 4> region_bounds(const field::Situations& s) {
-  std::vector<std::array<double, 2>> corners;
-  switch (s.shape) {
-    case field::RegionShape::kLine: corners = {s.from, s.to}; break;
-    case field::RegionShape::kGrid:
-    case field::RegionShape::kBox: corners = {{s.x_range[0], s.y_range[0]}, {s.x_range[1], s.y_range[1]}}; break;
-    case field::RegionShape::kList: corners = s.points; break;
-  }
-  std::array<double, 4> b{corners.at(0)[0], corners.at(0)[0], corners.at(0)[1], corners.at(0)[1]};
-  for (const auto& c : corners) {
-    b[0] = std::min(b[0], c[0]), b[1] = std::max(b[1], c[0]);
-    b[2] = std::min(b[2], c[1]), b[3] = std::max(b[3], c[1]);
-  }
-  return b;
-}
-
-field::Situations region_of(const field::Field& f, const std::string& spec) {
-  field::Situations r = spec.empty() ? f.situations : field::parse_situations_spec(spec, f.situations);
-  r.validate(f, spec.empty() ? "" : fmt::format("--situations '{}'", spec));
-  return r;
-}
+const teacher::TeacherOptions kTeacherDefaults{};
 
 }  // namespace
 
@@ -286,7 +263,7 @@ PYBIND11_MODULE(_minigolf, m) {
              return points(s.sample(n, seed));
            }, py::arg("n"), py::arg("seed") = 1,
            "`n` test situations drawn uniformly from the region with `seed`, (n, 2) [m]")
-      .def_property_readonly("bounds", [](const field::Situations& s) { return region_bounds(s); },
+      .def_property_readonly("bounds", &field::Situations::bounds,
                              "(x_min, x_max, y_min, y_max) [m] of every hole the region holds or samples");
 
   py::class_<field::Field>(m, "Field", "A minigolf lane: bounds, surface, tee, hole, ball, resistances.")
@@ -307,7 +284,7 @@ PYBIND11_MODULE(_minigolf, m) {
       .def_readonly("rolling_resistance", &field::Field::rolling_resistance, "Penner's rho [-]")
       .def_readonly("sliding_friction", &field::Field::sliding_friction, "Ball-lane Coulomb friction [-]")
       .def_readonly("situations", &field::Field::situations)
-      .def("region", [](const field::Field& f, const std::string& spec) { return region_of(f, spec); },
+      .def("region", &field::region_from_spec,
            py::arg("spec") = "",
            "The field's region of situations, or the one of `spec` (as `--situations`: line:X0,Y0:X1,Y1:N, "
            "grid:X0,X1:Y0,Y1:NX,NY, box:..., list:X,Y;X,Y), checked against the lane (ValueError)")
@@ -533,8 +510,10 @@ PYBIND11_MODULE(_minigolf, m) {
              py::gil_scoped_release release;
              return teacher::teach(s, data ? data->data : local.emplace(s), hole, t);
            },
-           py::arg("hole"), py::arg("strategy") = "", py::arg("max_full_putts") = 40, py::arg("max_ball_putts") = 600,
-           py::arg("margin_angle") = 0.004, py::arg("margin_speed") = 0.03, py::arg("data") = py::none(),
+           py::arg("hole"), py::arg("strategy") = "", py::arg("max_full_putts") = kTeacherDefaults.max_full_putts,
+           py::arg("max_ball_putts") = kTeacherDefaults.max_ball_putts,
+           py::arg("margin_angle") = kTeacherDefaults.margin_angle,
+           py::arg("margin_speed") = kTeacherDefaults.margin_speed, py::arg("data") = py::none(),
            "The automated teacher finds a sinking putt for the hole (x, y) [m]. strategy: 'min-speed' | "
            "'min-angle' (default: the field's). Margins [rad], [m/s]. Releases the GIL.")
       .def("sweep",
@@ -578,11 +557,11 @@ PYBIND11_MODULE(_minigolf, m) {
       .def("collect",
            [](const system::System& s, const std::string& out, const std::string& situations,
               const std::string& strategy, int max_full_putts, std::uint64_t seed, int threads, bool resume) {
-             const field::Situations region = region_of(s.field(), situations);
+             const field::Situations region = field::region_from_spec(s.field(), situations);
              experiments::CollectOptions o;
-             o.teacher = teacher_options(s, strategy, max_full_putts, 600, 0.004, 0.03);
-             o.teacher.learn_speed = region.learn_speed;
-             o.teacher.fixed_speed = region.speed;
+             o.teacher = teacher::options_for(region, strategy);
+             o.teacher.max_full_putts = max_full_putts;
+             o.teacher.validate();
              o.seed = seed;
              o.threads = threads;
              o.resume = resume;
@@ -590,7 +569,8 @@ PYBIND11_MODULE(_minigolf, m) {
              py::gil_scoped_release release;
              return experiments::collect(s, holes, o, out).examples;
            },
-           py::arg("out"), py::arg("situations") = "", py::arg("strategy") = "", py::arg("max_full_putts") = 40,
+           py::arg("out"), py::arg("situations") = "", py::arg("strategy") = "",
+           py::arg("max_full_putts") = kTeacherDefaults.max_full_putts,
            py::arg("seed") = 1, py::arg("threads") = 0, py::arg("resume") = false,
            "The teacher collects a data set at the region's collection points (or a --situations spec) into "
            "the CSV `out`, as `minigolf collect` does (resumable); returns the examples in index order. "
@@ -604,8 +584,8 @@ PYBIND11_MODULE(_minigolf, m) {
              o.seed = seed;
              o.threads = threads;
              o.oracle = oracle;
-             o.teacher = teacher_options(s, "", 40, 600, 0.004, 0.03);
-             const auto region = region_of(s.field(), region_spec);
+             const auto region = field::region_from_spec(s.field(), region_spec);
+             o.teacher = teacher::options_for(region);
              py::gil_scoped_release release;
              return experiments::evaluate_model(s, model, region, o);
            },

@@ -10,6 +10,15 @@
 #include "core/error.hpp"
 
 namespace mg::teacher {
+
+TeacherOptions options_for(const field::Situations& region, const std::string& strategy) {
+  TeacherOptions t;
+  t.strategy = parse_strategy(strategy.empty() ? region.strategy : strategy);
+  t.learn_speed = region.learn_speed;
+  t.fixed_speed = region.speed;
+  return t;
+}
+
 namespace {
 
 constexpr double kGravity = 9.81;

@@ -55,6 +55,10 @@ struct TeacherOptions {
   void validate() const;         ///< InputError naming the field
 };
 
+/// The teacher's options for `region`: what it learns (angle and speed, or the angle at the
+/// region's club speed) and `strategy` (empty: the region's default); the rest at their defaults.
+TeacherOptions options_for(const field::Situations& region, const std::string& strategy = "");
+
 /// One collected example (a row of the teacher's data set).
 struct Example {
   std::array<double, 2> hole{0, 0};  ///< [m]

@@ -1,6 +1,8 @@
 // The `situations` section of field files: shapes, defaults, sampling, command-line specs, errors.
 #include "field/situations.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -122,6 +124,33 @@ TEST(Situations, EveryShippedFieldHasItsThesisRegion) {
   EXPECT_EQ(load_field("regular-hill").situations.shape, RegionShape::kGrid);
   EXPECT_EQ(load_field("arctan").situations.collection_points().size(), 28u);
   EXPECT_EQ(load_field("arctan").situations.strategy, "min-speed");
+}
+
+TEST(Situations, BoundsHoldEverySampleAndEveryCollectionPoint) {
+  for (const std::string spec : {"line:2.2,-0.3:1.8,0.4:5", "grid:1.5,2.5:-0.3,0.3:1,3", "box:1.9,2.1:0.1,0.2:1,1",
+                                 "list:2.0,0.1;1.7,-0.2;2.3,0.0"}) {
+    const Field f = parse(with_situations(""));
+    const Situations r = region_from_spec(f, spec);
+    const auto b = r.bounds();
+    auto inside = [&](std::array<double, 2> p) {
+      return b[0] - 1e-12 <= p[0] && p[0] <= b[1] + 1e-12 && b[2] - 1e-12 <= p[1] && p[1] <= b[3] + 1e-12;
+    };
+    for (const auto& p : r.sample(200, 3)) EXPECT_TRUE(inside(p)) << spec;
+    for (const auto& p : r.collection_points()) EXPECT_TRUE(inside(p)) << spec;
+    // the bounds are tight: some sample comes within 10 % of the span of each side that spans
+    const auto s = r.sample(400, 5);
+    for (int axis = 0; axis < 2; ++axis) {
+      const double lo = b[2 * axis], hi = b[2 * axis + 1];
+      if (hi - lo < 1e-12) continue;
+      double seen_lo = hi, seen_hi = lo;
+      for (const auto& p : s) seen_lo = std::min(seen_lo, p[axis]), seen_hi = std::max(seen_hi, p[axis]);
+      EXPECT_LT(seen_lo - lo, 0.1 * (hi - lo)) << spec;
+      EXPECT_LT(hi - seen_hi, 0.1 * (hi - lo)) << spec;
+    }
+  }
+  const Field f = parse(with_situations(""));
+  EXPECT_EQ(region_from_spec(f, "").bounds(), f.situations.bounds());
+  EXPECT_THROW(region_from_spec(f, "box:1.5,9:-0.3,0.3:3,3"), InputError);  // off the lane
 }
 
 }  // namespace

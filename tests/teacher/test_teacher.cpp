@@ -74,5 +74,17 @@ TEST(Teacher, BadOptionsAndNamesAreRefused) {
   EXPECT_THROW(teach(flat(), data, {9.0, 0.0}, TeacherOptions{}), InputError);  // off the lane
 }
 
+TEST(TeacherOptions, ForARegionLearnWhatItLearnsWithItsStrategy) {
+  const field::Field flat = field::load_field("flat");  // angle only at 1.55 m/s, min-angle
+  const TeacherOptions t = options_for(flat.situations);
+  EXPECT_FALSE(t.learn_speed);
+  EXPECT_EQ(t.fixed_speed, flat.situations.speed);
+  EXPECT_EQ(t.strategy, Strategy::kMinAngle);
+  EXPECT_EQ(options_for(flat.situations, "min-speed").strategy, Strategy::kMinSpeed);
+  EXPECT_EQ(t.max_full_putts, TeacherOptions{}.max_full_putts);
+  EXPECT_TRUE(options_for(field::load_field("arctan").situations).learn_speed);
+  EXPECT_THROW(options_for(flat.situations, "max-fun"), InputError);
+}
+
 }  // namespace
 }  // namespace mg::teacher
