@@ -16,7 +16,7 @@
 
 #include <fmt/format.h>
 
-#include "python/py_data.hpp"
+#include "python/bindings.hpp"
 #include "viz/renderer.hpp"
 
 namespace py = pybind11;

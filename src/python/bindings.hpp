@@ -1,0 +1,105 @@
+#pragma once
+/// What the binding files of the `minigolf` module share: numpy conversions, the Python `Data` (an
+/// mjData of a world), the per-thread `SystemData`, and the functions that bind each part.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <array>
+#include <mutex>
+#include <stdexcept>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+#include <mujoco/mujoco.h>
+
+#include "core/error.hpp"
+#include "sim/world.hpp"
+#include "system/system.hpp"
+
+namespace mg::python {
+
+namespace py = pybind11;
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// A numpy array over `p` (no copy) that keeps `owner` alive; read-only unless `writeable`.
+template <typename T>
+inline py::array view(T* p, py::ssize_t rows, py::ssize_t cols, py::handle owner, bool writeable) {
+  std::vector<py::ssize_t> shape{rows};
+  if (cols > 1) shape.push_back(cols);
+  py::array a(py::dtype::of<T>(), shape, p, owner);
+  if (!writeable) a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+inline py::array_t<double> matrix(const Eigen::MatrixXd& m) {
+  py::array_t<double> a({m.rows(), m.cols()});
+  auto r = a.mutable_unchecked<2>();
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) r(i, j) = m(i, j);
+  return a;
+}
+
+inline Eigen::MatrixXd to_matrix(const Array& a, const char* what) {
+  if (a.ndim() != 2) throw InputError(fmt::format("{}: expected a 2-D array (N x D), got {} dimensions", what, a.ndim()));
+  Eigen::MatrixXd m(a.shape(0), a.shape(1));
+  auto r = a.unchecked<2>();
+  for (py::ssize_t i = 0; i < a.shape(0); ++i)
+    for (py::ssize_t j = 0; j < a.shape(1); ++j) m(i, j) = r(i, j);
+  return m;
+}
+
+inline py::array_t<double> points(const std::vector<std::array<double, 2>>& p) {
+  py::array_t<double> a({static_cast<py::ssize_t>(p.size()), py::ssize_t{2}});
+  auto r = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < p.size(); ++i) r(i, 0) = p[i][0], r(i, 1) = p[i][1];
+  return a;
+}
+
+// ---- worlds and their MuJoCo data
+
+/// An mjData of a world: owned (World.make_data) or borrowed from a SystemData.
+struct Data {
+  const sim::World* world = nullptr;
+  sim::DataPtr owned;
+  mjData* d = nullptr;
+};
+
+/// Throws unless `d` is an mjData of `w` (another world's would be read out of bounds).
+inline mjData* data_of(const sim::World& w, const Data& d) {
+  if (d.world != &w) throw InputError("World: this Data belongs to another world (use that world's make_data)");
+  return d.d;
+}
+
+/// A SystemData that refuses to be used by two threads at once.
+struct PySystemData {
+  explicit PySystemData(const system::System& s) : system(&s), data(s) {}
+  const system::System* system;
+  system::SystemData data;
+  std::mutex busy;
+};
+
+class Lease {
+ public:
+  explicit Lease(PySystemData* d) : d_(d) {
+    if (d_ && !d_->busy.try_lock())
+      throw std::runtime_error("SystemData: in use by another thread (make one per thread)");
+  }
+  ~Lease() {
+    if (d_) d_->busy.unlock();
+  }
+  Lease(const Lease&) = delete;
+  Lease& operator=(const Lease&) = delete;
+
+ private:
+  PySystemData* d_;
+};
+
+void bind_fields(py::module_& m);    ///< Situations, Field (field_bindings.cpp)
+void bind_worlds(py::module_& m);    ///< World, Data (world_bindings.cpp)
+void bind_system(py::module_& m);    ///< SystemData, PuttResult, Example, Evaluation, System (system_bindings.cpp)
+void bind_learners(py::module_& m);  ///< Model, train, load_dataset, HittingModel (learner_bindings.cpp)
+void bind_render(py::module_& m);    ///< Renderer (render_bindings.cpp)
+
+}  // namespace mg::python
