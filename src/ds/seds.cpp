@@ -23,8 +23,16 @@ constexpr int kCholeskySize = 6;
 constexpr std::array<std::pair<int, int>, 6> kLowerIndex{{{0, 0}, {1, 0}, {1, 1}, {2, 0}, {2, 1}, {2, 2}}};
 const double kLog2Pi = std::log(2.0 * std::numbers::pi);
 
+// One Gaussian's block of the parameter vector: log prior, mu (3), the Cholesky parameters of
+// Sigma (6), A (9, column-major), and with the likelihood objective those of C (6).
+constexpr int kLogPrior = 0;
+constexpr int kMu = 1;
+constexpr int kSigma = kMu + 3;
+constexpr int kA = kSigma + kCholeskySize;
+constexpr int kC = kA + 9;
+
 int block_size(SedsObjective objective) {
-  return 1 + 3 + kCholeskySize + 9 + (objective == SedsObjective::kLikelihood ? kCholeskySize : 0);
+  return kC + (objective == SedsObjective::kLikelihood ? kCholeskySize : 0);
 }
 
 // Sigma = L L^T + floor I with L lower-triangular and log-diagonal parameters.
@@ -125,11 +133,11 @@ Eigen::VectorXd pack_seds(const std::vector<SedsComponent>& components, SedsObje
   for (std::size_t k = 0; k < components.size(); ++k) {
     const auto& c = components[k];
     double* q = p.data() + k * b;
-    q[0] = std::log(std::max(c.prior, 1e-12));
-    for (int i = 0; i < 3; ++i) q[1 + i] = c.mu[i];
-    params_from_covariance(c.sigma, covariance_floor, q + 4);
-    for (int i = 0; i < 9; ++i) q[10 + i] = c.a.data()[i];
-    if (objective == SedsObjective::kLikelihood) params_from_covariance(c.c, covariance_floor, q + 19);
+    q[kLogPrior] = std::log(std::max(c.prior, 1e-12));
+    for (int i = 0; i < 3; ++i) q[kMu + i] = c.mu[i];
+    params_from_covariance(c.sigma, covariance_floor, q + kSigma);
+    for (int i = 0; i < 9; ++i) q[kA + i] = c.a.data()[i];
+    if (objective == SedsObjective::kLikelihood) params_from_covariance(c.c, covariance_floor, q + kC);
   }
   return p;
 }
@@ -140,19 +148,19 @@ std::vector<SedsComponent> unpack_seds(const Eigen::VectorXd& params, SedsObject
   const auto k_count = static_cast<std::size_t>(params.size() / b);
   std::vector<SedsComponent> out(k_count);
   Eigen::VectorXd w(static_cast<Eigen::Index>(k_count));
-  for (std::size_t k = 0; k < k_count; ++k) w[static_cast<Eigen::Index>(k)] = params[static_cast<Eigen::Index>(k * b)];
+  for (std::size_t k = 0; k < k_count; ++k) w[static_cast<Eigen::Index>(k)] = params[static_cast<Eigen::Index>(k * b + kLogPrior)];
   const double lse = log_sum_exp(w);
   for (std::size_t k = 0; k < k_count; ++k) {
     const double* q = params.data() + k * b;
     auto& c = out[k];
-    c.prior = std::exp(q[0] - lse);
-    c.mu = Vec3(q[1], q[2], q[3]);
-    const Mat3 lx = cholesky_from_params(q + 4);
+    c.prior = std::exp(q[kLogPrior] - lse);
+    c.mu = Vec3(q[kMu], q[kMu + 1], q[kMu + 2]);
+    const Mat3 lx = cholesky_from_params(q + kSigma);
     c.sigma = lx * lx.transpose();
     c.sigma.diagonal().array() += covariance_floor;
-    c.a = Eigen::Map<const Mat3>(q + 10);
+    c.a = Eigen::Map<const Mat3>(q + kA);
     if (objective == SedsObjective::kLikelihood) {
-      const Mat3 lc = cholesky_from_params(q + 19);
+      const Mat3 lc = cholesky_from_params(q + kC);
       c.c = lc * lc.transpose();
       c.c.diagonal().array() += covariance_floor;
     } else if (k < template_components.size()) {
@@ -169,18 +177,18 @@ double seds_objective(const Eigen::VectorXd& params, const SedsData& data, SedsO
   const bool like = objective == SedsObjective::kLikelihood;
   std::vector<Prepared> prep(static_cast<std::size_t>(kc));
   Eigen::VectorXd w(kc);
-  for (int k = 0; k < kc; ++k) w[k] = params[k * b];
+  for (int k = 0; k < kc; ++k) w[k] = params[k * b + kLogPrior];
   const double lse_w = log_sum_exp(w);
   for (int k = 0; k < kc; ++k) {
     const double* q = params.data() + k * b;
     auto& p = prep[static_cast<std::size_t>(k)];
-    p.log_prior = q[0] - lse_w;
-    p.mu = Vec3(q[1], q[2], q[3]);
-    p.lx = cholesky_from_params(q + 4);
+    p.log_prior = q[kLogPrior] - lse_w;
+    p.mu = Vec3(q[kMu], q[kMu + 1], q[kMu + 2]);
+    p.lx = cholesky_from_params(q + kSigma);
     p.log_norm_x = gaussian_normaliser(p.lx, covariance_floor, p.sigma_inv);
-    p.a = Eigen::Map<const Mat3>(q + 10);
+    p.a = Eigen::Map<const Mat3>(q + kA);
     if (like) {
-      p.lc = cholesky_from_params(q + 19);
+      p.lc = cholesky_from_params(q + kC);
       p.log_norm_c = gaussian_normaliser(p.lc, covariance_floor, p.c_inv);
     }
   }
@@ -260,14 +268,14 @@ double seds_objective(const Eigen::VectorXd& params, const SedsData& data, SedsO
       const auto& p = prep[static_cast<std::size_t>(k)];
       const auto ku = static_cast<std::size_t>(k);
       double* q = gradient->data() + k * b;
-      q[0] = g_logprior[k] - std::exp(p.log_prior) * sum_lp;
-      for (int j = 0; j < 3; ++j) q[1 + j] = g_mu[ku][j];
+      q[kLogPrior] = g_logprior[k] - std::exp(p.log_prior) * sum_lp;
+      for (int j = 0; j < 3; ++j) q[kMu + j] = g_mu[ku][j];
       const Mat3 gs = 0.5 * (g_zz[ku] - g_lsum[k] * p.sigma_inv);
-      chain_cholesky(gs, p.lx, q + 4);
-      for (int j = 0; j < 9; ++j) q[10 + j] = g_a[ku].data()[j];
+      chain_cholesky(gs, p.lx, q + kSigma);
+      for (int j = 0; j < 9; ++j) q[kA + j] = g_a[ku].data()[j];
       if (like) {
         const Mat3 gc = 0.5 * (g_uu[ku] - g_csum[k] * p.c_inv);
-        chain_cholesky(gc, p.lc, q + 19);
+        chain_cholesky(gc, p.lc, q + kC);
       }
     }
   }
@@ -409,7 +417,7 @@ struct OptContext {
 
 double max_constraint(const std::vector<double>& x, int kc, int b) {
   double worst = -std::numeric_limits<double>::infinity();
-  for (int k = 0; k < kc; ++k) worst = std::max(worst, stability_eigenvalue(Eigen::Map<const Mat3>(x.data() + k * b + 10)));
+  for (int k = 0; k < kc; ++k) worst = std::max(worst, stability_eigenvalue(Eigen::Map<const Mat3>(x.data() + k * b + kA)));
   return worst;
 }
 
@@ -437,14 +445,14 @@ void nlopt_constraints(unsigned m, double* result, unsigned n, const double* x, 
   const int b = block_size(ctx->options->objective);
   if (grad) std::fill(grad, grad + static_cast<std::size_t>(m) * n, 0.0);
   for (unsigned k = 0; k < m; ++k) {
-    const Eigen::Map<const Mat3> a(x + k * b + 10);
+    const Eigen::Map<const Mat3> a(x + k * b + kA);
     Eigen::SelfAdjointEigenSolver<Mat3> eig(a + a.transpose());
     result[k] = eig.eigenvalues()[2] + ctx->options->optimizer_margin;
     if (grad) {
       // d lambda_max / d A_ij = 2 v_i v_j (simple eigenvalue); A is stored column-major.
       const Vec3 v = eig.eigenvectors().col(2);
       const Mat3 d = 2.0 * v * v.transpose();
-      for (int j = 0; j < 9; ++j) grad[k * n + k * b + 10 + j] = d.data()[j];
+      for (int j = 0; j < 9; ++j) grad[k * n + k * b + kA + j] = d.data()[j];
     }
   }
 }
@@ -509,8 +517,8 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
     std::vector<double> lower(p0.size(), -HUGE_VAL), upper(p0.size(), HUGE_VAL);
     for (int k = 0; k < options.gaussians; ++k)
       for (int j = 0; j < 9; ++j) {
-        lower[static_cast<std::size_t>(k * b + 10 + j)] = -options.max_rate;
-        upper[static_cast<std::size_t>(k * b + 10 + j)] = options.max_rate;
+        lower[static_cast<std::size_t>(k * b + kA + j)] = -options.max_rate;
+        upper[static_cast<std::size_t>(k * b + kA + j)] = options.max_rate;
       }
     opt.set_lower_bounds(lower);
     opt.set_upper_bounds(upper);
