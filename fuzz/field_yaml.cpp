@@ -6,7 +6,8 @@
 #include "harness.hpp"
 
 MG_FUZZ_TARGET({
-  const auto f = mg::field::parse_field(mg::fuzz::as_text(data, size), "fuzz.yaml",
-                                        std::filesystem::temp_directory_path() / "mg_fuzz_no_such_dir");
+  const auto f =
+      mg::field::parse_field(mg::fuzz::as_text(data, size), "fuzz.yaml",
+                             std::filesystem::temp_directory_path() / "mg_fuzz_no_such_dir");
   (void)f.height(0.0, 0.0);
 })

@@ -39,8 +39,8 @@ std::string scratch_file(const char* suffix);
 
 }  // namespace mg::fuzz
 
-#define MG_FUZZ_TARGET(body_with_data_size)                                        \
+#define MG_FUZZ_TARGET(body_with_data_size)                                           \
   extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) { \
     mg::fuzz::expect_only_mg_errors([&] { body_with_data_size; });                    \
-    return 0;                                                                          \
+    return 0;                                                                         \
   }

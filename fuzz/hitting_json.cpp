@@ -4,7 +4,7 @@
 #include "harness.hpp"
 
 MG_FUZZ_TARGET({
-  const auto m = mg::ds::hitting_model_from_json(mg::parse_json(std::string(mg::fuzz::as_text(data, size)), "fuzz.json"),
-                                                 "fuzz.json");
+  const auto m = mg::ds::hitting_model_from_json(
+      mg::parse_json(std::string(mg::fuzz::as_text(data, size)), "fuzz.json"), "fuzz.json");
   (void)m.default_speed();
 })

@@ -7,8 +7,8 @@
 #include "learning/learner.hpp"
 
 MG_FUZZ_TARGET({
-  const auto m = mg::learning::model_from_json(mg::parse_json(std::string(mg::fuzz::as_text(data, size)), "fuzz.json"),
-                                               "fuzz.json");
+  const auto m = mg::learning::model_from_json(
+      mg::parse_json(std::string(mg::fuzz::as_text(data, size)), "fuzz.json"), "fuzz.json");
   const auto p = mg::learning::predict(m, Eigen::MatrixXd::Ones(1, m.num_inputs()));
   (void)mg::learning::beyond_training(m, p);
 })

@@ -46,12 +46,41 @@ extern "C" void on_crash(int sig) {
   std::raise(sig);
 }
 
-const char* const kTokens[] = {"1e999", "-1e999", "1e308", "-1", "0", "nan", "inf", "18446744073709551615",
-                               "9223372036854775808", "1e200", "-0", "\n", ",", ":", "{", "}", "[", "]", "\"",
-                               "null", "true", "  ", "\t", "#", "- ", "0x10", "1e-320", ".", "e", "%"};
+const char* const kTokens[] = {"1e999",
+                               "-1e999",
+                               "1e308",
+                               "-1",
+                               "0",
+                               "nan",
+                               "inf",
+                               "18446744073709551615",
+                               "9223372036854775808",
+                               "1e200",
+                               "-0",
+                               "\n",
+                               ",",
+                               ":",
+                               "{",
+                               "}",
+                               "[",
+                               "]",
+                               "\"",
+                               "null",
+                               "true",
+                               "  ",
+                               "\t",
+                               "#",
+                               "- ",
+                               "0x10",
+                               "1e-320",
+                               ".",
+                               "e",
+                               "%"};
 
 std::string mutate(std::string s, std::mt19937_64& rng) {
-  auto pick = [&](std::size_t n) { return n == 0 ? std::size_t{0} : static_cast<std::size_t>(rng() % n); };
+  auto pick = [&](std::size_t n) {
+    return n == 0 ? std::size_t{0} : static_cast<std::size_t>(rng() % n);
+  };
   const int edits = 1 + static_cast<int>(rng() % 4);
   for (int e = 0; e < edits; ++e) {
     switch (rng() % 7) {
@@ -81,8 +110,8 @@ std::string mutate(std::string s, std::mt19937_64& rng) {
         // Replace a run of digits (a number) by a token.
         const std::size_t at = pick(s.size() + 1);
         std::size_t end = at;
-        while (end < s.size() && (std::isdigit(static_cast<unsigned char>(s[end])) || s[end] == '.' || s[end] == 'e' ||
-                                  s[end] == '-'))
+        while (end < s.size() && (std::isdigit(static_cast<unsigned char>(s[end])) ||
+                                  s[end] == '.' || s[end] == 'e' || s[end] == '-'))
           ++end;
         s.replace(at, end - at, kTokens[pick(std::size(kTokens))]);
         break;
@@ -127,20 +156,24 @@ int main(int argc, char** argv) {
     g_current = &input;
     const auto t0 = std::chrono::steady_clock::now();
     LLVMFuzzerTestOneInput(reinterpret_cast<const std::uint8_t*>(input.data()), input.size());
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     slowest = std::max(slowest, ms);
     g_current = nullptr;
     if (ms > max_ms) {
       std::ofstream(g_crash_path, std::ios::binary) << input;
-      std::fprintf(stderr, "fuzz: hang: one input took %.0f ms (limit %.0f); written to %s\n", ms, max_ms, g_crash_path);
+      std::fprintf(stderr, "fuzz: hang: one input took %.0f ms (limit %.0f); written to %s\n", ms,
+                   max_ms, g_crash_path);
       std::exit(1);
     }
   };
   const auto t0 = std::chrono::steady_clock::now();
   for (const auto& c : corpus) run_one(c);
-  for (long i = 0; i < runs; ++i) run_one(mutate(corpus[static_cast<std::size_t>(rng() % corpus.size())], rng));
+  for (long i = 0; i < runs; ++i)
+    run_one(mutate(corpus[static_cast<std::size_t>(rng() % corpus.size())], rng));
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("fuzz: %zu seeds + %ld mutations, 0 crashes, 0 hangs, %.2f s (slowest input %.1f ms)\n", corpus.size(), runs,
-              secs, slowest);
+  std::printf(
+      "fuzz: %zu seeds + %ld mutations, 0 crashes, 0 hangs, %.2f s (slowest input %.1f ms)\n",
+      corpus.size(), runs, secs, slowest);
   return 0;
 }

@@ -8,7 +8,9 @@
 namespace mg::fuzz {
 
 std::string scratch_file(const char* suffix) {
-  return (std::filesystem::temp_directory_path() / ("mg_fuzz_" + std::to_string(::getpid()) + suffix)).string();
+  return (std::filesystem::temp_directory_path() /
+          ("mg_fuzz_" + std::to_string(::getpid()) + suffix))
+      .string();
 }
 
 }  // namespace mg::fuzz

@@ -2,4 +2,7 @@
 #include "harness.hpp"
 #include "perception/vision_message.hpp"
 
-MG_FUZZ_TARGET({ (void)mg::perception::parse_vision_message(mg::fuzz::as_text(data, size), mg::perception::VisionLimits{}); })
+MG_FUZZ_TARGET({
+  (void)mg::perception::parse_vision_message(mg::fuzz::as_text(data, size),
+                                             mg::perception::VisionLimits{});
+})

@@ -14,7 +14,8 @@ packages=(
   pybind11-dev python3-dev  # the minigolf Python module (docs/python.md)
   libopenmpi-dev openmpi-bin  # MPI scale-out (docs/scale-out.md)
   clang-14 libfuzzer-14-dev  # scripts/fuzz.sh (libFuzzer harnesses, fuzz/)
-  ccache  # the sanitizer build of CI (scripts/sanitize.sh ci) recompiles only what changed
+  ccache  # build.sh, the wheel and the sanitizer build of CI recompile only what changed
+  clang-format  # scripts/format.sh (ctest format_check)
 )
 
 missing=()

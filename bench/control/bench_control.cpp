@@ -17,10 +17,11 @@ using namespace mg;
 
 struct Rig {
   sim::World world{control::make_world_with_arm(field::load_field("flat"))};
-  control::ModuleModel model{control::make_module_model(
-      world,
-      ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) + "/data/models/hitting-default.json"),
-      control::ModuleConfig{})};
+  control::ModuleModel model{
+      control::make_module_model(world,
+                                 ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) +
+                                                        "/data/models/hitting-default.json"),
+                                 control::ModuleConfig{})};
   sim::DataPtr d{world.make_data()};
   control::ModuleData md{model};
   perception::SimulatorPerception truth{world, d.get()};

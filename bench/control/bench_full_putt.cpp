@@ -11,8 +11,8 @@
 //
 // Run: ./build/bench/control/bench_full_putt   (add --benchmark_format=json for machines)
 #include <array>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include <benchmark/benchmark.h>
 
@@ -43,11 +43,11 @@ struct Rig {
   explicit Rig(const std::string& field)
       : world(control::make_world_with_arm(field::load_field(field))),
         ball_world(control::make_ball_world(world)),
-        model(control::make_module_model(
-            world,
-            ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) +
-                                   "/data/models/hitting-default.json"),
-            control::ModuleConfig{})),
+        model(
+            control::make_module_model(world,
+                                       ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) +
+                                                              "/data/models/hitting-default.json"),
+                                       control::ModuleConfig{})),
         d(world.make_data()) {}
 };
 
@@ -127,11 +127,12 @@ void BM_BallPutt(benchmark::State& state, Shot shot) {
 void register_all() {
   for (const Shot& s : kShots) {
     const std::string f = s.field;
-    const std::array<std::pair<const char*, Mode>, 5> modes{{{"FullPutt/", Mode::kExact},
-                                                             {"FullPuttRepeat/", Mode::kRepeat},
-                                                             {"FullPuttKinematic/", Mode::kKinematic},
-                                                             {"FullPuttAtRest/", Mode::kAtRest},
-                                                             {"FullPuttBefore/", Mode::kBefore}}};
+    const std::array<std::pair<const char*, Mode>, 5> modes{
+        {{"FullPutt/", Mode::kExact},
+         {"FullPuttRepeat/", Mode::kRepeat},
+         {"FullPuttKinematic/", Mode::kKinematic},
+         {"FullPuttAtRest/", Mode::kAtRest},
+         {"FullPuttBefore/", Mode::kBefore}}};
     for (const auto& [name, mode] : modes)
       benchmark::RegisterBenchmark((name + f).c_str(), BM_FullPutt, s, mode)
           ->Unit(benchmark::kMillisecond);

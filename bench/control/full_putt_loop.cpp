@@ -25,10 +25,11 @@ int main(int argc, char** argv) {
   if (field == "arctan") angle = 0.03, speed = 1.65;
   const sim::World world = control::make_world_with_arm(field::load_field(field));
   const sim::World ball_world = control::make_ball_world(world);
-  const control::ModuleModel model = control::make_module_model(
-      world,
-      ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) + "/data/models/hitting-default.json"),
-      control::ModuleConfig{});
+  const control::ModuleModel model =
+      control::make_module_model(world,
+                                 ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) +
+                                                        "/data/models/hitting-default.json"),
+                                 control::ModuleConfig{});
   auto d = world.make_data();
   auto bd = ball_world.make_data();
   control::PuttScratch scratch;

@@ -61,26 +61,31 @@ int main(int argc, char** argv) {
     std::snprintf(b, sizeof b, f, a);
     return std::string(b);
   };
-  table("Club speed at impact / command", [&](const control::FullPuttResult& x, std::size_t, std::size_t k) {
-    return fmt("%.3f", x.club.speed / speeds[k]);
-  });
-  table("Ball launch speed / club speed", [&](const control::FullPuttResult& x, std::size_t, std::size_t) {
-    return fmt("%.3f", x.launch.speed / x.club.speed);
-  });
+  table("Club speed at impact / command",
+        [&](const control::FullPuttResult& x, std::size_t, std::size_t k) {
+          return fmt("%.3f", x.club.speed / speeds[k]);
+        });
+  table("Ball launch speed / club speed",
+        [&](const control::FullPuttResult& x, std::size_t, std::size_t) {
+          return fmt("%.3f", x.launch.speed / x.club.speed);
+        });
   std::printf("\nLaunch-angle bias at theta = 0 [rad]:");
   for (std::size_t k = 0; k < speeds.size(); ++k)
-    std::printf(" %.1f m/s %+.4f%s", speeds[k], r[i0][k].launch.angle, k + 1 < speeds.size() ? "," : "\n");
+    std::printf(" %.1f m/s %+.4f%s", speeds[k], r[i0][k].launch.angle,
+                k + 1 < speeds.size() ? "," : "\n");
   table("Launch-angle error after the bias at theta = 0 [rad]",
         [&](const control::FullPuttResult& x, std::size_t i, std::size_t k) {
           return fmt("%+.4f", x.launch.angle - angles[i] - r[i0][k].launch.angle);
         });
   table("Raw torque demand / limit (the clamp keeps the applied torque <= 1)",
         [&](const control::FullPuttResult& x, std::size_t, std::size_t) {
-          return fmt("%.2f", x.max_raw_torque_ratio) + (x.max_torque_ratio > 1.0 + 1e-12 ? " (!)" : "");
+          return fmt("%.2f", x.max_raw_torque_ratio) +
+                 (x.max_torque_ratio > 1.0 + 1e-12 ? " (!)" : "");
         });
   table("Max measured joint speed / limit (commanded <= 1 always)",
         [&](const control::FullPuttResult& x, std::size_t, std::size_t) {
-          return fmt("%.2f", x.max_velocity_ratio) + (x.max_command_velocity_ratio > 1.0 + 1e-9 ? " (!)" : "") +
+          return fmt("%.2f", x.max_velocity_ratio) +
+                 (x.max_command_velocity_ratio > 1.0 + 1e-9 ? " (!)" : "") +
                  (x.faulted ? " fault" : "");
         });
   table("Time to the rest pose / request to contact [s]",
@@ -103,6 +108,8 @@ int main(int argc, char** argv) {
       overruns += x.timing.overruns;
       ticks += x.timing.ticks;
     }
-  std::printf("\nCore update over %d ticks: worst per-putt p99 %.1f us, max %.1f us, %d over the 2 ms budget\n",
-              ticks, p99, worst, overruns);
+  std::printf(
+      "\nCore update over %d ticks: worst per-putt p99 %.1f us, max %.1f us, %d over the 2 ms "
+      "budget\n",
+      ticks, p99, worst, overruns);
 }

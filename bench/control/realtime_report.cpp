@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "realtime_report: RUNS: expected 1..1000, got '%s'\n", argv[1]);
     return 2;
   }
-  std::printf("| run | core ticks | deadline misses | misses %% | core update p99 [us] | max [us] |\n");
+  std::printf(
+      "| run | core ticks | deadline misses | misses %% | core update p99 [us] | max [us] |\n");
   std::printf("|---|---|---|---|---|---|\n");
   bool met = true;
   std::string scheduling;
@@ -32,12 +33,15 @@ int main(int argc, char** argv) {
     session.execute("wait 3");
     const auto ticks = session.core_ticks(), misses = session.deadline_misses();
     const auto t = session.timing();
-    const double percent = ticks ? 100.0 * static_cast<double>(misses) / static_cast<double>(ticks) : 100.0;
+    const double percent =
+        ticks ? 100.0 * static_cast<double>(misses) / static_cast<double>(ticks) : 100.0;
     met = met && percent < 1.0;
     scheduling = session.scheduling();
-    std::printf("| %d | %llu | %llu | %.2f | %.0f | %.0f |\n", r, static_cast<unsigned long long>(ticks),
-                static_cast<unsigned long long>(misses), percent, t.core_update_p99_us, t.core_update_max_us);
+    std::printf("| %d | %llu | %llu | %.2f | %.0f | %.0f |\n", r,
+                static_cast<unsigned long long>(ticks), static_cast<unsigned long long>(misses),
+                percent, t.core_update_p99_us, t.core_update_max_us);
   }
-  std::printf("\n%s; target: under 1 %% deadline misses in every run: %s\n", scheduling.c_str(), met ? "met" : "NOT met");
+  std::printf("\n%s; target: under 1 %% deadline misses in every run: %s\n", scheduling.c_str(),
+              met ? "met" : "NOT met");
   return met ? 0 : 1;
 }

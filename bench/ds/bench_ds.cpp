@@ -9,14 +9,16 @@
 namespace {
 
 const mg::ds::HittingModel& model() {
-  static const mg::ds::HittingModel m = mg::ds::read_hitting_model(mg::data_dir() / "models" / "hitting-default.json");
+  static const mg::ds::HittingModel m =
+      mg::ds::read_hitting_model(mg::data_dir() / "models" / "hitting-default.json");
   return m;
 }
 
 void BM_HittingDsVelocity(benchmark::State& state) {
   const auto& m = model();
   mg::ds::HittingDsData data(m);
-  data.set_command(m, {0.3, 1.8, mg::ds::Modulator::kSine, m.x_star() + Eigen::Vector3d(-0.4, 0.05, 0.15)});
+  data.set_command(
+      m, {0.3, 1.8, mg::ds::Modulator::kSine, m.x_star() + Eigen::Vector3d(-0.4, 0.05, 0.15)});
   // Points along a typical approach, both outside and inside the guidance zone.
   Eigen::Vector3d p = m.x_star() + Eigen::Vector3d(-0.4, 0.05, 0.15);
   const Eigen::Vector3d step = (m.x_star() - p) / 64.0;
@@ -32,7 +34,10 @@ void BM_Rollout(benchmark::State& state) {
   mg::ds::RolloutOptions o;
   o.record = false;
   for (auto _ : state)
-    benchmark::DoNotOptimize(mg::ds::rollout(m, {0.2, 1.5, mg::ds::Modulator::kConstant, m.x_star() + Eigen::Vector3d(-0.35, 0.05, 0.12)}, o));
+    benchmark::DoNotOptimize(mg::ds::rollout(
+        m,
+        {0.2, 1.5, mg::ds::Modulator::kConstant, m.x_star() + Eigen::Vector3d(-0.35, 0.05, 0.12)},
+        o));
 }
 BENCHMARK(BM_Rollout)->Unit(benchmark::kMillisecond);
 

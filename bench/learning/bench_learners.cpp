@@ -23,7 +23,8 @@ mg::learning::Dataset sloped_field(int n, std::uint64_t seed) {
   for (int i = 0; i < n; ++i) {
     const double x = ux(rng), y = uy(rng), dist = std::hypot(x, y), phi = std::atan2(y, x);
     d.inputs.row(i) << x, y;
-    d.outputs.row(i) << phi + 0.25 * std::tanh(dist) * std::cos(phi) + 0.1 * std::sin(2 * y) + na(rng),
+    d.outputs.row(i) << phi + 0.25 * std::tanh(dist) * std::cos(phi) + 0.1 * std::sin(2 * y) +
+                            na(rng),
         std::sqrt(1.2 * dist + 0.25) + 0.15 * y + 0.05 * std::sin(3 * x) + ns(rng);
   }
   return d;

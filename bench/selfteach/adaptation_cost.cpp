@@ -4,9 +4,9 @@
 // PUTTS putts (default 10), REPEATS times (default 3). The learning share is the total minus the
 // same putts replayed without learning. Prints a Markdown table (medians over the repeats).
 #include <algorithm>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,11 +38,14 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: adaptation_cost [PUTTS >= 1] [REPEATS >= 1]\n");
     return 2;
   }
-  std::printf("| field | self-teach --prior: CPU per putt | evaluate --learn: CPU per putt | of which learning |\n");
+  std::printf(
+      "| field | self-teach --prior: CPU per putt | evaluate --learn: CPU per putt | of which "
+      "learning |\n");
   std::printf("|---|---|---|---|\n");
   for (const std::string name : {"flat", "multiple-hills", "regular-hill", "arctan"}) {
     const learning::Dataset d = learning::load_dataset(data_dir() / "datasets" / (name + ".csv"));
-    const auto prior = std::make_shared<const learning::Model>(learning::train(d, learning::TrainOptions{}));
+    const auto prior =
+        std::make_shared<const learning::Model>(learning::train(d, learning::TrainOptions{}));
     const system::System sys(system::load_config("", name), plant::random_plant(1));
     const auto& region = sys.field().situations;
     std::vector<double> teach, learn, plain;
@@ -68,8 +71,8 @@ int main(int argc, char** argv) {
       (void)experiments::evaluate_model(sys, *prior, region, eo);
       plain.push_back((cpu_seconds() - t0) / putts);
     }
-    std::printf("| %s | %.1f ms | %.1f ms | %.1f ms |\n", name.c_str(), 1e3 * median(teach), 1e3 * median(learn),
-                1e3 * (median(learn) - median(plain)));
+    std::printf("| %s | %.1f ms | %.1f ms | %.1f ms |\n", name.c_str(), 1e3 * median(teach),
+                1e3 * median(learn), 1e3 * (median(learn) - median(plain)));
     std::fflush(stdout);
   }
   return 0;

@@ -33,10 +33,12 @@ void BM_Putt(benchmark::State& state, const std::string& field_name) {
     steps += out.steps;
     benchmark::DoNotOptimize(out.closest_approach);
   }
-  state.counters["putts_per_s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                     benchmark::Counter::kIsRate);
-  state.counters["steps_per_putt"] = static_cast<double>(steps) / static_cast<double>(state.iterations());
-  state.counters["sim_steps_per_s"] = benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
+  state.counters["putts_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["steps_per_putt"] =
+      static_cast<double>(steps) / static_cast<double>(state.iterations());
+  state.counters["sim_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(steps), benchmark::Counter::kIsRate);
 }
 
 // The same number of steps as a typical putt with only what the model needs to have ground at
@@ -57,17 +59,22 @@ void BM_BareStep(benchmark::State& state, const std::string& field_name) {
     total += steps;
     benchmark::DoNotOptimize(d->qpos[0]);
   }
-  state.counters["sim_steps_per_s"] = benchmark::Counter(static_cast<double>(total), benchmark::Counter::kIsRate);
+  state.counters["sim_steps_per_s"] =
+      benchmark::Counter(static_cast<double>(total), benchmark::Counter::kIsRate);
 }
 
 }  // namespace
 
 BENCHMARK_CAPTURE(BM_Putt, flat, std::string("flat"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BareStep, flat, std::string("flat"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Putt, multiple_hills, std::string("multiple-hills"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BareStep, multiple_hills, std::string("multiple-hills"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Putt, regular_hill, std::string("regular-hill"))->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_BareStep, regular_hill, std::string("regular-hill"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Putt, multiple_hills, std::string("multiple-hills"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BareStep, multiple_hills, std::string("multiple-hills"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Putt, regular_hill, std::string("regular-hill"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_BareStep, regular_hill, std::string("regular-hill"))
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Putt, arctan, std::string("arctan"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_BareStep, arctan, std::string("arctan"))->Unit(benchmark::kMillisecond);
 

@@ -17,15 +17,19 @@ namespace {
 // Per hole: how far the one-body cup's wall tops (centre of each top face) are from the
 // per-segment cup's, and the one-body cup's tilt.
 void print_geometry() {
-  std::printf("| field | hole | tilt [deg] | max wall-top difference [mm] | mean [mm] |\n|---|---|---|---|---|\n");
+  std::printf(
+      "| field | hole | tilt [deg] | max wall-top difference [mm] | mean [mm] "
+      "|\n|---|---|---|---|---|\n");
   for (const char* name : {"flat", "multiple-hills", "regular-hill", "arctan"}) {
     mg::sim::WorldOptions seg_options;
     seg_options.cup = mg::sim::CupBodies::kPerSegment;
-    const mg::sim::World one(mg::field::load_field(name)), seg(mg::field::load_field(name), seg_options);
+    const mg::sim::World one(mg::field::load_field(name)),
+        seg(mg::field::load_field(name), seg_options);
     auto d1 = one.make_data();
     auto d2 = seg.make_data();
     const auto h0 = one.field().hole.position;
-    for (const std::array<double, 2> shift : {std::array<double, 2>{0.0, 0.0}, {-0.4, 0.25}, {-0.7, -0.2}}) {
+    for (const std::array<double, 2> shift :
+         {std::array<double, 2>{0.0, 0.0}, {-0.4, 0.25}, {-0.7, -0.2}}) {
       const std::array<double, 2> hole{h0[0] + shift[0], h0[1] + shift[1]};
       try {
         one.set_hole(d1.get(), hole);
@@ -50,7 +54,8 @@ void print_geometry() {
       }
       const mjtNum* r = d1->geom_xmat + 9 * one.ids().first_wall_geom;
       std::printf("| %s | (%.3f, %.3f) | %.2f | %.2f | %.2f |\n", name, hole[0], hole[1],
-                  std::acos(std::min(1.0, r[8])) * 180.0 / 3.14159265358979, 1e3 * worst, 1e3 * sum / n);
+                  std::acos(std::min(1.0, r[8])) * 180.0 / 3.14159265358979, 1e3 * worst,
+                  1e3 * sum / n);
     }
   }
 }
@@ -63,14 +68,16 @@ int main(int argc, char** argv) {
     return 0;
   }
   mg::sim::WorldOptions options;
-  if (argc > 1 && std::string(argv[1]) == "per-segment") options.cup = mg::sim::CupBodies::kPerSegment;
+  if (argc > 1 && std::string(argv[1]) == "per-segment")
+    options.cup = mg::sim::CupBodies::kPerSegment;
   std::mt19937 rng(20240611);
   for (const char* name : {"flat", "multiple-hills", "regular-hill", "arctan"}) {
     const mg::sim::World world(mg::field::load_field(name), options);
     auto d = world.make_data();
     const auto& f = world.field();
     const auto h0 = f.hole.position;
-    for (const std::array<double, 2> shift : {std::array<double, 2>{0.0, 0.0}, {-0.4, 0.25}, {-0.7, -0.2}}) {
+    for (const std::array<double, 2> shift :
+         {std::array<double, 2>{0.0, 0.0}, {-0.4, 0.25}, {-0.7, -0.2}}) {
       const std::array<double, 2> hole{h0[0] + shift[0], h0[1] + shift[1]};
       try {
         world.set_hole(d.get(), hole);

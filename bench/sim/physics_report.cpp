@@ -43,7 +43,9 @@ const char* name(sim::GroundContact g) {
 
 void rolling_table() {
   fmt::print("### Flat ground, launch without spin (rho = 0.131, mu = 0.3, 2.5 cm cells)\n\n");
-  fmt::print("| ground | v0 [m/s] | distance: Penner [m] | measured [m] | error | stop time: Penner [s] | measured [s] | error | sideways drift [mm] |\n");
+  fmt::print(
+      "| ground | v0 [m/s] | distance: Penner [m] | measured [m] | error | stop time: Penner [s] | "
+      "measured [s] | error | sideways drift [mm] |\n");
   fmt::print("|---|---|---|---|---|---|---|---|---|\n");
   for (auto g : {sim::GroundContact::kTangentPlane, sim::GroundContact::kHeightfield}) {
     const sim::World world(plane(0, 0, 0.131, 0.06, 0.025), mode(g));
@@ -56,16 +58,19 @@ void rolling_table() {
       const double dist = 12.0 * v0 * v0 / (49.0 * 0.3 * kG) + v1 * v1 / (2.0 * a);
       const double time = 2.0 * v0 / (7.0 * 0.3 * kG) + v1 / a;
       const double t = out.duration - sim::OutcomeRules{}.rest_time;
-      fmt::print("| {} | {:.1f} | {:.4f} | {:.4f} | {:+.2f} % | {:.3f} | {:.3f} | {:+.2f} % | {:.1f} |\n",
-                 name(g), v0, dist, out.rest_position[0], 100 * (out.rest_position[0] - dist) / dist,
-                 time, t, 100 * (t - time) / time, 1000 * (out.rest_position[1] - 0.013));
+      fmt::print(
+          "| {} | {:.1f} | {:.4f} | {:.4f} | {:+.2f} % | {:.3f} | {:.3f} | {:+.2f} % | {:.1f} |\n",
+          name(g), v0, dist, out.rest_position[0], 100 * (out.rest_position[0] - dist) / dist, time,
+          t, 100 * (t - time) / time, 1000 * (out.rest_position[1] - 0.013));
     }
   }
 }
 
 void slide_table() {
   fmt::print("\n### Slide, then roll (v0 = 2 m/s, mu = 0.3)\n\n");
-  fmt::print("| ground | t* closed form [s] | measured [s] | error | speed at t*: 5/7 v0 [m/s] | measured [m/s] |\n|---|---|---|---|---|---|\n");
+  fmt::print(
+      "| ground | t* closed form [s] | measured [s] | error | speed at t*: 5/7 v0 [m/s] | measured "
+      "[m/s] |\n|---|---|---|---|---|---|\n");
   for (auto g : {sim::GroundContact::kTangentPlane, sim::GroundContact::kHeightfield}) {
     const sim::World world(plane(0, 0, 0.131, 0.06, 0.025), mode(g));
     auto d = world.make_data();
@@ -87,8 +92,11 @@ void slide_table() {
 }
 
 void incline_table() {
-  fmt::print("\n### Rolling on an incline (no rolling resistance): acceleration along the fall line\n\n");
-  fmt::print("| ground | slope (dz/dx, dz/dy) | (5/7) g sin(slope) [m/s^2] | measured [m/s^2] | error |\n|---|---|---|---|---|\n");
+  fmt::print(
+      "\n### Rolling on an incline (no rolling resistance): acceleration along the fall line\n\n");
+  fmt::print(
+      "| ground | slope (dz/dx, dz/dy) | (5/7) g sin(slope) [m/s^2] | measured [m/s^2] | error "
+      "|\n|---|---|---|---|---|\n");
   for (auto g : {sim::GroundContact::kTangentPlane, sim::GroundContact::kHeightfield})
     for (auto [sx, sy] : {std::pair{0.05, 0.0}, std::pair{0.0, 0.08}, std::pair{0.1, 0.05}}) {
       const sim::World world(plane(sx, sy, 0.0, 0.2, 0.025), mode(g));
@@ -102,11 +110,13 @@ void incline_table() {
       const auto& a = out.trajectory[1];
       const auto& b = out.trajectory[5];
       const double dt = b.t - a.t, gn = std::hypot(sx, sy), slope = std::atan(gn);
-      const double fall[3] = {-sx / gn * std::cos(slope), -sy / gn * std::cos(slope), -std::sin(slope)};
-      const double along = (b.vx - a.vx) / dt * fall[0] + (b.vy - a.vy) / dt * fall[1] + (b.vz - a.vz) / dt * fall[2];
+      const double fall[3] = {-sx / gn * std::cos(slope), -sy / gn * std::cos(slope),
+                              -std::sin(slope)};
+      const double along = (b.vx - a.vx) / dt * fall[0] + (b.vy - a.vy) / dt * fall[1] +
+                           (b.vz - a.vz) / dt * fall[2];
       const double expected = 5.0 / 7.0 * kG * std::sin(slope);
-      fmt::print("| {} | ({}, {}) | {:.4f} | {:.4f} | {:+.2f} % |\n", name(g), sx, sy, expected, along,
-                 100 * (along - expected) / expected);
+      fmt::print("| {} | ({}, {}) | {:.4f} | {:.4f} | {:+.2f} % |\n", name(g), sx, sy, expected,
+                 along, 100 * (along - expected) / expected);
     }
 }
 
@@ -122,8 +132,11 @@ bool sinks(const sim::World& world, mjData* d, double b, double v) {
 }
 
 void capture_table() {
-  fmt::print("\n### Capture speed at the hole (108 mm hole, golf ball, rolling; 0.01 m/s steps)\n\n");
-  fmt::print("| hole depth [m] | path offset b [m] | v_cap(b) free fall [m/s] | highest speed that sinks [m/s] | ratio |\n|---|---|---|---|---|\n");
+  fmt::print(
+      "\n### Capture speed at the hole (108 mm hole, golf ball, rolling; 0.01 m/s steps)\n\n");
+  fmt::print(
+      "| hole depth [m] | path offset b [m] | v_cap(b) free fall [m/s] | highest speed that sinks "
+      "[m/s] | ratio |\n|---|---|---|---|---|\n");
   for (double depth : {0.06, 0.015, 0.01}) {
     const sim::World world(plane(0, 0, 0.131, depth, 0.05));
     auto d = world.make_data();

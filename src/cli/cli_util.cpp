@@ -18,7 +18,8 @@ void run_plot_script(const std::string& args, const std::string& png) {
   namespace fs = std::filesystem;
   check_output_file(png);
   const fs::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";
-  const std::string command = "/usr/bin/python3 " + shell_quote(script.string()) + " " + args + " 2>&1";
+  const std::string command =
+      "/usr/bin/python3 " + shell_quote(script.string()) + " " + args + " 2>&1";
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) throw Error("plot: cannot run /usr/bin/python3");
   std::string text;
@@ -29,7 +30,8 @@ void run_plot_script(const std::string& args, const std::string& png) {
   if (const auto nl = text.rfind('\n'); nl != std::string::npos) text = text.substr(nl + 1);
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   if (code == 2) throw InputError(text);
-  if (code != 0) throw Error(fmt::format("plot: {} failed (exit {}): {}", script.string(), code, text));
+  if (code != 0)
+    throw Error(fmt::format("plot: {} failed (exit {}): {}", script.string(), code, text));
   std::error_code ec;
   if (!fs::is_regular_file(png, ec) || fs::file_size(png, ec) == 0)
     throw Error(fmt::format("plot: {} was not written", shown_path(png)));
@@ -41,8 +43,8 @@ CLI::Validator finite_number(double lo, double hi) {
         double v = 0.0;
         const char* first = text.data() + (!text.empty() && text.front() == '+' ? 1 : 0);
         auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
-        if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(v) || v < lo ||
-            v > hi)
+        if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() ||
+            !std::isfinite(v) || v < lo || v > hi)
           return fmt::format("expected a finite number in [{}, {}], got '{}'", lo, hi, text);
         return {};
       },
@@ -89,7 +91,8 @@ std::array<double, N> parse_vector(const std::string& what, const std::string& t
     const std::size_t comma = text.find(',', start);
     const bool last = i + 1 == N;
     if (last != (comma == std::string::npos))
-      throw InputError(fmt::format("{}: expected {} comma-separated numbers, got '{}'", what, N, text));
+      throw InputError(
+          fmt::format("{}: expected {} comma-separated numbers, got '{}'", what, N, text));
     out[i] = parse_number(what, text.substr(start, last ? std::string::npos : comma - start));
     start = comma + 1;
   }
@@ -104,7 +107,8 @@ std::vector<std::string> parse_names(const std::string& what, const std::string&
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = text.find(',', start);
-    std::string name = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    std::string name =
+        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     if (name.empty()) throw InputError(fmt::format("{}: empty name in '{}'", what, text));
     names.push_back(std::move(name));
     if (comma == std::string::npos) break;

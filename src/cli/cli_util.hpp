@@ -46,6 +46,7 @@ plant::Plant load_plant_arg(const std::string& path);
 nlohmann::json plant_json(const plant::Plant& plant);
 /// The help text of --plant.
 inline constexpr const char* kPlantHelp =
-    "Plant file: the world as it really is where it differs from the robot's model (docs/reality.md)";
+    "Plant file: the world as it really is where it differs from the robot's model "
+    "(docs/reality.md)";
 
 }  // namespace mg::cli

@@ -16,9 +16,9 @@
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "control/module_config.hpp"
-#include "system/session.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "system/session.hpp"
 
 namespace mg::cli {
 
@@ -37,7 +37,8 @@ void add_console_command(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "console", "Run the arm and the minigolf module interactively (commands on standard input)");
-  cmd->add_option("--config", o->config, "Module config YAML (see README: module config)")->check(CLI::ExistingFile);
+  cmd->add_option("--config", o->config, "Module config YAML (see README: module config)")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--field", o->field, "Shipped field name or path (overrides the config)");
   cmd->add_option("--mode", o->mode, "simulator | normal (overrides the config)");
   cmd->add_flag("--realtime", o->realtime,
@@ -47,9 +48,12 @@ void add_console_command(CLI::App& app) {
   cmd->add_option("--script", o->script, "Read commands from this file instead of standard input")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--echo", o->echo, "Print every command before its answer");
-  cmd->add_option("--seed", o->seed, "Seed of the vision simulator's noise")->check(unsigned_integer())->capture_default_str();
-  cmd->add_option("--plant", o->plant,
-                  "Plant file: the lane and the arm's friction and club as they really are (docs/reality.md)");
+  cmd->add_option("--seed", o->seed, "Seed of the vision simulator's noise")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  cmd->add_option(
+      "--plant", o->plant,
+      "Plant file: the lane and the arm's friction and club as they really are (docs/reality.md)");
   cmd->callback([o] {
     control::ModuleConfig config =
         o->config.empty() ? control::ModuleConfig{} : control::load_module_config(o->config);
@@ -64,7 +68,8 @@ void add_console_command(CLI::App& app) {
     options.echo = o->echo;
     options.seed = o->seed;
     options.plant = load_plant_arg(o->plant);
-    // Ctrl-C (or kill, or a closed terminal) ends the session as `quit` does: the recording is kept.
+    // Ctrl-C (or kill, or a closed terminal) ends the session as `quit` does: the recording is
+    // kept.
     defer_termination_signals();
     {
       system::Session session(config, options, std::cout);

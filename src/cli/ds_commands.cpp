@@ -12,12 +12,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "core/json_io.hpp"
-#include "cli/cli_util.hpp"
-#include "cli/progress.hpp"
 #include "ds/demonstrations.hpp"
 #include "ds/hitting_ds.hpp"
 #include "ds/hitting_model.hpp"
@@ -51,17 +51,23 @@ void add_demos(CLI::App& ds) {
     int count = 8;
   };
   auto o = std::make_shared<Opts>();
-  CLI::App* cmd = ds.add_subcommand("demos", "Generate synthetic human-like hitting demonstrations (CSV)");
-  cmd->add_option("-o,--output", o->out, "Output CSV: demo,t,x,y,z,vx,vy,vz (m, s, world frame)")->required();
-  cmd->add_option("--seed", o->seed, "Random seed")->check(unsigned_integer())->capture_default_str();
+  CLI::App* cmd =
+      ds.add_subcommand("demos", "Generate synthetic human-like hitting demonstrations (CSV)");
+  cmd->add_option("-o,--output", o->out, "Output CSV: demo,t,x,y,z,vx,vy,vz (m, s, world frame)")
+      ->required();
+  cmd->add_option("--seed", o->seed, "Random seed")
+      ->check(unsigned_integer())
+      ->capture_default_str();
   cmd->add_option("--count", o->count, "Number of demonstrations")->capture_default_str();
   cmd->callback([o] {
     ds::DemoGeneratorConfig cfg;
     cfg.count = o->count;
     Rng rng(o->seed);
     const auto demos = ds::generate_demonstrations(cfg, rng);
-    write_file_atomic(o->out, "# minigolf hitting demonstrations: metres, seconds, world frame (ball at 0,0,0.02135; +x = psi0)\n" +
-                                  ds::format_demonstrations(demos));
+    write_file_atomic(o->out,
+                      "# minigolf hitting demonstrations: metres, seconds, world frame (ball at "
+                      "0,0,0.02135; +x = psi0)\n" +
+                          ds::format_demonstrations(demos));
     std::size_t n = 0;
     for (const auto& d : demos) n += d.size();
     fmt::print("wrote {} demonstrations ({} samples) to {}\n", demos.size(), n, o->out);
@@ -77,13 +83,19 @@ void add_fit(CLI::App& ds) {
     bool json = false;
   };
   auto o = std::make_shared<Opts>();
-  CLI::App* cmd = ds.add_subcommand("fit", "Fit a hitting model (SEDS + strength GMM) to demonstrations");
+  CLI::App* cmd =
+      ds.add_subcommand("fit", "Fit a hitting model (SEDS + strength GMM) to demonstrations");
   cmd->add_option("demos", o->demos, "Demonstrations CSV")->required();
   cmd->add_option("-o,--output", o->out, "Output hitting model (JSON)")->required();
-  cmd->add_option("--gaussians", o->gaussians, "Number of Gaussians K")->check(CLI::Range(1, ds::kMaxSedsGaussians))->capture_default_str();
+  cmd->add_option("--gaussians", o->gaussians, "Number of Gaussians K")
+      ->check(CLI::Range(1, ds::kMaxSedsGaussians))
+      ->capture_default_str();
   cmd->add_option("--objective", o->objective, "likelihood | mse")->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Seed of k-means++/EM")->check(unsigned_integer())->capture_default_str();
-  cmd->add_option("--max-evaluations", o->max_evaluations, "NLopt objective evaluations at most")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of k-means++/EM")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  cmd->add_option("--max-evaluations", o->max_evaluations, "NLopt objective evaluations at most")
+      ->capture_default_str();
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o] {
     const auto demos = ds::read_demonstrations(o->demos);
@@ -137,16 +149,23 @@ void add_fit(CLI::App& ds) {
     }
     for (const auto& note : rep.notes) fmt::print(stderr, "minigolf: note: {}\n", note);
     fmt::print("wrote {}\n", o->out);
-    fmt::print("  SEDS          K = {}, objective {}, {} samples, {} evaluations, {:.2f} s\n", rep.seds.components.size(), o->objective,
-               rep.samples_used, rep.seds.evaluations, rep.fit_seconds);
-    fmt::print("  objective     {:.6g} -> {:.6g}\n", rep.seds.initial_objective, rep.seds.final_objective);
-    fmt::print("  stability     max eigenvalue of A_k + A_k^T = {:.6g} 1/s\n", model.max_eigenvalue());
+    fmt::print("  SEDS          K = {}, objective {}, {} samples, {} evaluations, {:.2f} s\n",
+               rep.seds.components.size(), o->objective, rep.samples_used, rep.seds.evaluations,
+               rep.fit_seconds);
+    fmt::print("  objective     {:.6g} -> {:.6g}\n", rep.seds.initial_objective,
+               rep.seds.final_objective);
+    fmt::print("  stability     max eigenvalue of A_k + A_k^T = {:.6g} 1/s\n",
+               model.max_eigenvalue());
     fmt::print("  v(x*)         {:.4f} m/s\n", model.default_speed());
-    fmt::print("  reproduction  velocity RMSE {:.4f} m/s (speed {:.4f} m/s), direction RMSE {:.2f} deg (bare SEDS {:.2f} deg)\n",
-               err.velocity_rmse, err.speed_rmse, err.direction_rmse * 180.0 / std::numbers::pi,
-               err.seds_direction_rmse * 180.0 / std::numbers::pi);
-    fmt::print("                rollouts from the demo starts: path distance mean {:.4f} m, max {:.4f} m, {}/{} reach the ball\n",
-               err.mean_path_distance, err.max_path_distance, err.all_reached, demos.size());
+    fmt::print(
+        "  reproduction  velocity RMSE {:.4f} m/s (speed {:.4f} m/s), direction RMSE {:.2f} deg "
+        "(bare SEDS {:.2f} deg)\n",
+        err.velocity_rmse, err.speed_rmse, err.direction_rmse * 180.0 / std::numbers::pi,
+        err.seds_direction_rmse * 180.0 / std::numbers::pi);
+    fmt::print(
+        "                rollouts from the demo starts: path distance mean {:.4f} m, max {:.4f} m, "
+        "{}/{} reach the ball\n",
+        err.mean_path_distance, err.max_path_distance, err.all_reached, demos.size());
   });
 }
 
@@ -156,7 +175,8 @@ void add_check(CLI::App& ds) {
     bool json = false;
   };
   auto o = std::make_shared<Opts>();
-  CLI::App* cmd = ds.add_subcommand("check", "Verify the SEDS stability constraints of a hitting model");
+  CLI::App* cmd =
+      ds.add_subcommand("check", "Verify the SEDS stability constraints of a hitting model");
   cmd->add_option("model", o->model, "Hitting model JSON (or 'default')")->required();
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o] {
@@ -190,12 +210,15 @@ void add_check(CLI::App& ds) {
                                         {"problem", problem}}
                              .dump());
     } else {
-      fmt::print("{}: {} components, max eigenvalue of A_k + A_k^T = {:.6g} 1/s (required <= -1e-4), "
-                 "max |b_k + A_k x*| (relative) = {:.3g}: {}\n",
-                 path.string(), gmm.num_components(), max_eig, bias, ok ? "OK" : "FAILED");
+      fmt::print(
+          "{}: {} components, max eigenvalue of A_k + A_k^T = {:.6g} 1/s (required <= -1e-4), "
+          "max |b_k + A_k x*| (relative) = {:.3g}: {}\n",
+          path.string(), gmm.num_components(), max_eig, bias, ok ? "OK" : "FAILED");
     }
     if (!stable)
-      throw NumericalError(fmt::format("{}: SEDS stability constraints violated (max eigenvalue {}, bias {})", path.string(), max_eig, bias));
+      throw NumericalError(
+          fmt::format("{}: SEDS stability constraints violated (max eigenvalue {}, bias {})",
+                      path.string(), max_eig, bias));
     if (!problem.empty()) throw InputError(problem);
   });
 }
@@ -209,11 +232,14 @@ void add_rollout(CLI::App& ds) {
     bool json = false;
   };
   auto o = std::make_shared<Opts>();
-  CLI::App* cmd = ds.add_subcommand("rollout", "Integrate the hitting DS from a start point until the ball is reached");
+  CLI::App* cmd = ds.add_subcommand(
+      "rollout", "Integrate the hitting DS from a start point until the ball is reached");
   cmd->add_option("model", o->model, "Hitting model JSON (or 'default')")->required();
   cmd->add_option("--start", o->start, "Start position X,Y,Z [m, world]")->capture_default_str();
-  cmd->add_option("--angle", o->angle, "Hitting angle theta [rad] about +z from psi0")->capture_default_str();
-  CLI::Option* speed_opt = cmd->add_option("--speed", o->speed, "Hitting speed at the ball [m/s] (default: the model's v(x*))");
+  cmd->add_option("--angle", o->angle, "Hitting angle theta [rad] about +z from psi0")
+      ->capture_default_str();
+  CLI::Option* speed_opt = cmd->add_option(
+      "--speed", o->speed, "Hitting speed at the ball [m/s] (default: the model's v(x*))");
   cmd->add_option("--modulator", o->modulator, "constant | sine")->capture_default_str();
   cmd->add_option("--dt", o->dt, "Integration step [s] (RK4)")->capture_default_str();
   cmd->add_option("-o,--output", o->out, "Trajectory CSV: t,x,y,z,vx,vy,vz");
@@ -246,12 +272,15 @@ void add_rollout(CLI::App& ds) {
                                         {"steps", r.steps}}
                              .dump());
     } else {
-      fmt::print("{}: {} after {:.3f} s ({} steps)\n", r.reached ? "reached the ball" : "did NOT reach the ball", r.stop_reason,
+      fmt::print("{}: {} after {:.3f} s ({} steps)\n",
+                 r.reached ? "reached the ball" : "did NOT reach the ball", r.stop_reason,
                  r.duration, r.steps);
       fmt::print("  position error  {:.3e} m\n", r.position_error);
-      fmt::print("  velocity        ({:.4f}, {:.4f}, {:.4f}) m/s, speed {:.4f} m/s (requested {:.4f})\n", r.velocity.x(),
-                 r.velocity.y(), r.velocity.z(), r.velocity.norm(), c.speed);
-      fmt::print("  direction error {:.4f} deg from R(theta) psi0\n", angle_error * 180.0 / std::numbers::pi);
+      fmt::print(
+          "  velocity        ({:.4f}, {:.4f}, {:.4f}) m/s, speed {:.4f} m/s (requested {:.4f})\n",
+          r.velocity.x(), r.velocity.y(), r.velocity.z(), r.velocity.norm(), c.speed);
+      fmt::print("  direction error {:.4f} deg from R(theta) psi0\n",
+                 angle_error * 180.0 / std::numbers::pi);
     }
     if (!r.reached) throw NumericalError(fmt::format("ball not reached ({})", r.stop_reason));
   });
@@ -260,7 +289,8 @@ void add_rollout(CLI::App& ds) {
 }  // namespace
 
 void add_ds_commands(CLI::App& app) {
-  CLI::App* ds = app.add_subcommand("ds", "The hitting motion: demonstrations, SEDS fit, checks, rollouts");
+  CLI::App* ds =
+      app.add_subcommand("ds", "The hitting motion: demonstrations, SEDS fit, checks, rollouts");
   ds->require_subcommand(1);
   add_demos(*ds);
   add_fit(*ds);

@@ -30,7 +30,8 @@ struct LearnArgs {
   int restarts = 10;
   std::uint64_t seed = 1;
   double reg_covar = 1e-2;
-  CLI::Option* reg_covar_option = nullptr;  ///< given: use reg_covar as is; else chosen by cross-validation
+  CLI::Option* reg_covar_option =
+      nullptr;  ///< given: use reg_covar as is; else chosen by cross-validation
   std::string length_scales, signal_std, noise_std;
   std::string length_scale_bounds, signal_std_bounds, noise_std_bounds;
   bool no_optimize = false;
@@ -57,25 +58,37 @@ void add_learn_options(CLI::App* cmd, LearnArgs& a) {
   cmd->add_option("--outputs", a.outputs, "Output columns, comma-separated")->capture_default_str();
   cmd->add_option("--gaussians", a.gaussians, "Number of Gaussians (GMR); 0 = choose by --select")
       ->capture_default_str();
-  cmd->add_option("--select", a.select, "How to choose the number of Gaussians: bic | cv")->capture_default_str();
-  cmd->add_option("--max-gaussians", a.max_gaussians, "Largest number of Gaussians tried by --select")
+  cmd->add_option("--select", a.select, "How to choose the number of Gaussians: bic | cv")
       ->capture_default_str();
-  cmd->add_option("--restarts", a.restarts, "GPR optimiser starts / k-means++ seedings")->capture_default_str();
-  cmd->add_option("--seed", a.seed, "Random seed")->check(unsigned_integer())->capture_default_str();
-  a.reg_covar_option = cmd->add_option(
-      "--reg-covar", a.reg_covar,
-      "GMM covariance regularisation (standardised units, > 0); default: chosen from 1e-6..1e-1 by cross-validation");
-  cmd->add_option("--length-scales", a.length_scales, "GPR initial length scales: one, or one per input");
-  cmd->add_option("--signal-std", a.signal_std, "GPR initial signal std: one, or one per output (output units)");
-  cmd->add_option("--noise-std", a.noise_std, "GPR initial noise std: one, or one per output (output units)");
-  cmd->add_option("--length-scale-bounds", a.length_scale_bounds, "GPR length scale bounds LO,HI (input units)");
-  cmd->add_option("--signal-std-bounds", a.signal_std_bounds, "GPR signal std bounds LO,HI (output units)");
-  cmd->add_option("--noise-std-bounds", a.noise_std_bounds, "GPR noise std bounds LO,HI (output units)");
+  cmd->add_option("--max-gaussians", a.max_gaussians,
+                  "Largest number of Gaussians tried by --select")
+      ->capture_default_str();
+  cmd->add_option("--restarts", a.restarts, "GPR optimiser starts / k-means++ seedings")
+      ->capture_default_str();
+  cmd->add_option("--seed", a.seed, "Random seed")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  a.reg_covar_option = cmd->add_option("--reg-covar", a.reg_covar,
+                                       "GMM covariance regularisation (standardised units, > 0); "
+                                       "default: chosen from 1e-6..1e-1 by cross-validation");
+  cmd->add_option("--length-scales", a.length_scales,
+                  "GPR initial length scales: one, or one per input");
+  cmd->add_option("--signal-std", a.signal_std,
+                  "GPR initial signal std: one, or one per output (output units)");
+  cmd->add_option("--noise-std", a.noise_std,
+                  "GPR initial noise std: one, or one per output (output units)");
+  cmd->add_option("--length-scale-bounds", a.length_scale_bounds,
+                  "GPR length scale bounds LO,HI (input units)");
+  cmd->add_option("--signal-std-bounds", a.signal_std_bounds,
+                  "GPR signal std bounds LO,HI (output units)");
+  cmd->add_option("--noise-std-bounds", a.noise_std_bounds,
+                  "GPR noise std bounds LO,HI (output units)");
   cmd->add_flag("--no-optimize", a.no_optimize, "GPR: use the initial hyperparameters as they are");
   cmd->add_flag("--json", a.json, "Print one JSON object");
 }
 
-learning::TrainOptions make_train_options(const LearnArgs& a, std::size_t num_inputs, std::size_t num_outputs) {
+learning::TrainOptions make_train_options(const LearnArgs& a, std::size_t num_inputs,
+                                          std::size_t num_outputs) {
   learning::TrainOptions o;
   o.method = learning::parse_method(a.method);
   o.num_gaussians = a.gaussians;
@@ -88,18 +101,24 @@ learning::TrainOptions make_train_options(const LearnArgs& a, std::size_t num_in
   auto per_output = [&](const std::string& what, const std::string& text) {
     std::vector<double> v = text.empty() ? std::vector<double>{} : parse_numbers(what, text);
     if (!v.empty() && v.size() != 1 && v.size() != num_outputs)
-      throw InputError(fmt::format("{}: expected 1 or {} values (one per output), got {}", what, num_outputs, v.size()));
+      throw InputError(fmt::format("{}: expected 1 or {} values (one per output), got {}", what,
+                                   num_outputs, v.size()));
     for (double x : v)
-      if (!(x > 0.0)) throw InputError(fmt::format("{}: expected positive numbers, got {}", what, x));
+      if (!(x > 0.0))
+        throw InputError(fmt::format("{}: expected positive numbers, got {}", what, x));
     return v;
   };
   const std::vector<double> sf = per_output("--signal-std", a.signal_std);
   const std::vector<double> sn = per_output("--noise-std", a.noise_std);
-  const std::vector<double> ls = a.length_scales.empty() ? std::vector<double>{} : parse_numbers("--length-scales", a.length_scales);
+  const std::vector<double> ls = a.length_scales.empty()
+                                     ? std::vector<double>{}
+                                     : parse_numbers("--length-scales", a.length_scales);
   if (!ls.empty() && ls.size() != 1 && ls.size() != num_inputs)
-    throw InputError(fmt::format("--length-scales: expected 1 or {} values (one per input), got {}", num_inputs, ls.size()));
+    throw InputError(fmt::format("--length-scales: expected 1 or {} values (one per input), got {}",
+                                 num_inputs, ls.size()));
   stats::GprOptions base;
-  base.initial_length_scales = Eigen::Map<const Eigen::VectorXd>(ls.data(), static_cast<Eigen::Index>(ls.size()));
+  base.initial_length_scales =
+      Eigen::Map<const Eigen::VectorXd>(ls.data(), static_cast<Eigen::Index>(ls.size()));
   base.length_scale_bounds = parse_bounds("--length-scale-bounds", a.length_scale_bounds);
   base.signal_std_bounds = parse_bounds("--signal-std-bounds", a.signal_std_bounds);
   base.noise_std_bounds = parse_bounds("--noise-std-bounds", a.noise_std_bounds);
@@ -129,7 +148,8 @@ void add_learning_commands(CLI::App& app) {
     std::string model;
   };
   auto t = std::make_shared<TrainArgs>();
-  CLI::App* train = app.add_subcommand("train", "Train a hitting-parameter learner (xi -> angle, speed) on a CSV dataset");
+  CLI::App* train = app.add_subcommand(
+      "train", "Train a hitting-parameter learner (xi -> angle, speed) on a CSV dataset");
   train->add_option("data", t->data, "Training dataset (CSV with a header)")->required();
   train->add_option("-o,--output", t->model, "Model file to write (JSON)")->required();
   add_learn_options(train, t->learn);
@@ -148,17 +168,20 @@ void add_learning_commands(CLI::App& app) {
       fmt::print("{}\n", learning::report_to_json(model).dump());
       return;
     }
-    fmt::print("trained {} on {} rows of {} ({} -> {}); model written to {}\n", learning::method_name(model.method),
-               data.size(), data.source, fmt::join(inputs, ","), fmt::join(outputs, ","), t->model);
+    fmt::print("trained {} on {} rows of {} ({} -> {}); model written to {}\n",
+               learning::method_name(model.method), data.size(), data.source,
+               fmt::join(inputs, ","), fmt::join(outputs, ","), t->model);
     for (int o = 0; o < model.num_outputs(); ++o) {
       const auto& r = model.reports[static_cast<std::size_t>(o)];
       if (model.method == learning::Method::kGpr)
-        fmt::print("  {:<10} length scales [{}], signal std {:.6g}, noise std {:.6g}, log marginal likelihood {:.6g}\n",
-                   outputs[static_cast<std::size_t>(o)], fmt_vec(r.length_scales), r.signal_std, r.noise_std,
-                   r.log_marginal_likelihood);
+        fmt::print(
+            "  {:<10} length scales [{}], signal std {:.6g}, noise std {:.6g}, log marginal "
+            "likelihood {:.6g}\n",
+            outputs[static_cast<std::size_t>(o)], fmt_vec(r.length_scales), r.signal_std,
+            r.noise_std, r.log_marginal_likelihood);
       else
-        fmt::print("  {:<10} {} Gaussians, log-likelihood {:.6g}, BIC {:.6g}\n", outputs[static_cast<std::size_t>(o)],
-                   r.n_gaussians, r.log_likelihood, r.bic);
+        fmt::print("  {:<10} {} Gaussians, log-likelihood {:.6g}, BIC {:.6g}\n",
+                   outputs[static_cast<std::size_t>(o)], r.n_gaussians, r.log_likelihood, r.bic);
     }
   });
 
@@ -168,9 +191,13 @@ void add_learning_commands(CLI::App& app) {
     std::string queries;
   };
   auto p = std::make_shared<PredictArgs>();
-  CLI::App* predict = app.add_subcommand("predict", "Predict hitting parameters (mean and std per output) for query situations");
+  CLI::App* predict = app.add_subcommand(
+      "predict", "Predict hitting parameters (mean and std per output) for query situations");
   predict->add_option("model", p->model, "Model file written by 'train'")->required();
-  predict->add_option("queries", p->queries, "CSV with the model's input columns (other columns are echoed)")->required();
+  predict
+      ->add_option("queries", p->queries,
+                   "CSV with the model's input columns (other columns are echoed)")
+      ->required();
   predict->callback([p] {
     const learning::Model model = learning::load_model(p->model);
     const CsvTable table = read_csv(p->queries);
@@ -193,11 +220,15 @@ void add_learning_commands(CLI::App& app) {
     fmt::print("{}", format_csv(header, rows));
     // Flagged, not hidden: GMR's linear extrapolation can ask for any value far from its data.
     if (const auto far = learning::beyond_training(model, pred); !far.empty()) {
-      const auto& w = *std::max_element(far.begin(), far.end(), [](auto& a, auto& b) { return a.spread < b.spread; });
-      fmt::print(stderr, "minigolf: warning: {} prediction(s) lie more than {:g} training standard deviations from "
-                 "the training outputs (worst: row {}, {} at {:.3g} stds): queries far outside the training inputs\n",
-                 far.size(), learning::kMaxPredictionSpread, w.row + 1, model.output_names[static_cast<std::size_t>(w.output)],
-                 w.spread);
+      const auto& w = *std::max_element(far.begin(), far.end(),
+                                        [](auto& a, auto& b) { return a.spread < b.spread; });
+      fmt::print(stderr,
+                 "minigolf: warning: {} prediction(s) lie more than {:g} training standard "
+                 "deviations from "
+                 "the training outputs (worst: row {}, {} at {:.3g} stds): queries far outside the "
+                 "training inputs\n",
+                 far.size(), learning::kMaxPredictionSpread, w.row + 1,
+                 model.output_names[static_cast<std::size_t>(w.output)], w.spread);
     }
   });
 
@@ -210,7 +241,8 @@ void add_learning_commands(CLI::App& app) {
   };
   auto v = std::make_shared<ValidateArgs>();
   CLI::App* validate = app.add_subcommand(
-      "validate", "Train on one dataset and report MSE and NLPD per output on another (thesis Definition 6.1)");
+      "validate",
+      "Train on one dataset and report MSE and NLPD per output on another (thesis Definition 6.1)");
   validate->add_option("--train", v->train, "Training dataset (CSV)")->required();
   validate->add_option("--validate", v->validate, "Validation dataset (CSV)")->required();
   validate->add_option("-o,--output", v->model, "Also write the trained model here");
@@ -226,12 +258,13 @@ void add_learning_commands(CLI::App& app) {
     const std::vector<learning::Score> scores = learning::score(model, val_data);
     if (v->learn.json) {
       nlohmann::json j = nlohmann::json::object();
-      for (std::size_t o = 0; o < outputs.size(); ++o) j[outputs[o]] = {{"mse", scores[o].mse}, {"nlpd", scores[o].nlpd}};
+      for (std::size_t o = 0; o < outputs.size(); ++o)
+        j[outputs[o]] = {{"mse", scores[o].mse}, {"nlpd", scores[o].nlpd}};
       fmt::print("{}\n", j.dump());
       return;
     }
-    fmt::print("{} trained on {} rows, validated on {} rows\n", learning::method_name(model.method), train_data.size(),
-               val_data.size());
+    fmt::print("{} trained on {} rows, validated on {} rows\n", learning::method_name(model.method),
+               train_data.size(), val_data.size());
     fmt::print("{:<12} {:>14} {:>14}\n", "output", "mse", "nlpd");
     for (std::size_t o = 0; o < outputs.size(); ++o)
       fmt::print("{:<12} {:>14.6g} {:>14.6g}\n", outputs[o], scores[o].mse, scores[o].nlpd);

@@ -1,11 +1,12 @@
 // The robot plays: sweep (sinking windows), collect (the teacher's data sets), evaluate (the
 // learned model on random test situations, thesis table 6.5). All run putts on every core.
 //
-//   sweep --field F [--hole X,Y] --angles A0:A1:N --speeds V0:V1:N [--ball-only] -o OUT.csv [--plot OUT.png]
-//   collect --field F [--strategy S] [--situations SPEC] [--seed S] [--resume] -o DATA.csv
+//   sweep --field F [--hole X,Y] --angles A0:A1:N --speeds V0:V1:N [--ball-only] -o OUT.csv [--plot
+//   OUT.png] collect --field F [--strategy S] [--situations SPEC] [--seed S] [--resume] -o DATA.csv
 //   evaluate --field F --model M [--situations N] [--seed S] [--no-oracle] [--json] [-o ROWS.csv]
-//   curves --field F --learner self-teach|teacher-gpr|crkr [--seeds N] [--checkpoints 10,25,50] -o CURVES.csv
-//   self-teach --field F --budget N [--seed S] [--batch B] [--log PUTTS.csv] -o MODEL.json
+//   curves --field F --learner self-teach|teacher-gpr|crkr [--seeds N] [--checkpoints 10,25,50] -o
+//   CURVES.csv self-teach --field F --budget N [--seed S] [--batch B] [--log PUTTS.csv] -o
+//   MODEL.json
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -43,9 +44,11 @@ struct SystemArgs {
 };
 
 void add_system_options(CLI::App* cmd, SystemArgs& a) {
-  cmd->add_option("--field", a.field, "Shipped field name or path to a field file")->capture_default_str();
+  cmd->add_option("--field", a.field, "Shipped field name or path to a field file")
+      ->capture_default_str();
   cmd->add_option("--config", a.config, "Module config YAML");
-  cmd->add_option("--hitting-model", a.hitting_model, "Hitting DS model file (default: the shipped one)");
+  cmd->add_option("--hitting-model", a.hitting_model,
+                  "Hitting DS model file (default: the shipped one)");
   cmd->add_option("--plant", a.plant, kPlantHelp);
   cmd->add_option("--threads", a.threads, "Threads (0: all cores; results do not depend on it)")
       ->check(CLI::Range(0, 256))
@@ -60,7 +63,8 @@ std::vector<double> parse_range(const std::string& what, const std::string& text
   const double lo = parse_number(what, text.substr(0, a));
   const double hi = parse_number(what, text.substr(a + 1, b - a - 1));
   const std::uint64_t n = parse_unsigned(what, text.substr(b + 1));
-  if (n < 1 || n > 1000) throw InputError(fmt::format("{}: expected N in 1..1000, got {}", what, n));
+  if (n < 1 || n > 1000)
+    throw InputError(fmt::format("{}: expected N in 1..1000, got {}", what, n));
   if (hi < lo) throw InputError(fmt::format("{}: expected LO <= HI, got {}:{}", what, lo, hi));
   return experiments::linspace(lo, hi, static_cast<int>(n));
 }
@@ -72,11 +76,14 @@ void add_sweep(CLI::App& app) {
     bool ball_only = false;
   };
   auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("sweep", "Outcome of every (angle, speed) cell of a grid: the sinking window");
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Outcome of every (angle, speed) cell of a grid: the sinking window");
   add_system_options(cmd, a->sys);
   cmd->add_option("--hole", a->hole, "Hole centre X,Y [m] (default: the field's)");
-  cmd->add_option("--angles", a->angles, "A0:A1:N hitting angles [rad] (ball only: launch angles)")->required();
-  cmd->add_option("--speeds", a->speeds, "V0:V1:N club speeds [m/s] (ball only: launch speeds)")->required();
+  cmd->add_option("--angles", a->angles, "A0:A1:N hitting angles [rad] (ball only: launch angles)")
+      ->required();
+  cmd->add_option("--speeds", a->speeds, "V0:V1:N club speeds [m/s] (ball only: launch speeds)")
+      ->required();
   cmd->add_flag("--ball-only", a->ball_only, "Launch the ball directly (no arm)");
   cmd->add_option("-o,--output", a->out, "CSV file to write")->required();
   cmd->add_option("--plot", a->plot, "Also draw a heat map PNG here");
@@ -88,7 +95,8 @@ void add_sweep(CLI::App& app) {
     o.threads = a->sys.threads;
     check_output_file(a->out);  // before the sweep, not after it
     if (!a->plot.empty()) check_output_file(a->plot);
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
+                             load_plant_arg(a->sys.plant));
     if (!a->ball_only)
       for (double angle : o.angles)
         for (double speed : o.speeds) sys.check_request(angle, speed, "sweep");
@@ -100,12 +108,14 @@ void add_sweep(CLI::App& app) {
     int sunk = 0;
     for (const auto& c : cells) sunk += c.outcome.sunk;
     if (!a->plot.empty() && system::is_root_process())  // one process draws (MPI)
-      run_plot_script(fmt::format("sweep {} {} --title {}", shell_quote(a->out), shell_quote(a->plot),
-                                  shell_quote(fmt::format("{} hole ({:g}, {:g}){}", sys.field().name, o.hole[0],
-                                                          o.hole[1], a->ball_only ? ", ball only" : ", arm"))),
-                      a->plot);
-    fmt::print("sweep on {} ({}), hole ({}, {}): {} of {} cells sink; written to {}\n", sys.field().name,
-               a->ball_only ? "ball only" : "arm", o.hole[0], o.hole[1], sunk, cells.size(), a->out);
+      run_plot_script(
+          fmt::format("sweep {} {} --title {}", shell_quote(a->out), shell_quote(a->plot),
+                      shell_quote(fmt::format("{} hole ({:g}, {:g}){}", sys.field().name, o.hole[0],
+                                              o.hole[1], a->ball_only ? ", ball only" : ", arm"))),
+          a->plot);
+    fmt::print("sweep on {} ({}), hole ({}, {}): {} of {} cells sink; written to {}\n",
+               sys.field().name, a->ball_only ? "ball only" : "arm", o.hole[0], o.hole[1], sunk,
+               cells.size(), a->out);
   });
 }
 
@@ -119,21 +129,29 @@ void add_collect(CLI::App& app) {
     int random = 0;
   };
   auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("collect", "The teacher collects a data set of sinking putts (thesis 5.1)");
+  CLI::App* cmd = app.add_subcommand(
+      "collect", "The teacher collects a data set of sinking putts (thesis 5.1)");
   add_system_options(cmd, a->sys);
-  cmd->add_option("--strategy", a->strategy, "min-speed | min-angle (default: the field's situations.strategy)");
+  cmd->add_option("--strategy", a->strategy,
+                  "min-speed | min-angle (default: the field's situations.strategy)");
   cmd->add_option("--situations", a->situations,
-                  "Region instead of the field's: line:X0,Y0:X1,Y1:N | grid:X0,X1:Y0,Y1:NX,NY | box:... | list:X,Y;X,Y");
-  cmd->add_option("--seed", a->seed, "Seed (recorded; the teacher is deterministic)")->check(unsigned_integer())->capture_default_str();
+                  "Region instead of the field's: line:X0,Y0:X1,Y1:N | grid:X0,X1:Y0,Y1:NX,NY | "
+                  "box:... | list:X,Y;X,Y");
+  cmd->add_option("--seed", a->seed, "Seed (recorded; the teacher is deterministic)")
+      ->check(unsigned_integer())
+      ->capture_default_str();
   cmd->add_option("--max-full-putts", a->max_full_putts, "Full-system putt budget per situation")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
-  cmd->add_option("--random", a->random, "Collect at N random situations of the region (seeded by --seed) instead of its points")
+  cmd->add_option(
+         "--random", a->random,
+         "Collect at N random situations of the region (seeded by --seed) instead of its points")
       ->check(CLI::Range(0, 100000));
   cmd->add_flag("--resume", a->resume, "Continue an interrupted collection in the output file");
   cmd->add_option("-o,--output", a->out, "Data set CSV to write")->required();
   cmd->callback([a] {
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
+                             load_plant_arg(a->sys.plant));
     const field::Situations region = field::region_from_spec(sys.field(), a->situations);
     experiments::CollectOptions o;
     o.teacher = teacher::options_for(region, a->strategy);
@@ -141,26 +159,31 @@ void add_collect(CLI::App& app) {
     o.seed = a->seed;
     o.threads = a->sys.threads;
     o.resume = a->resume;
-    const auto holes = a->random > 0 ? region.sample(a->random, a->seed) : region.collection_points();
+    const auto holes =
+        a->random > 0 ? region.sample(a->random, a->seed) : region.collection_points();
     Progress bar("collect", static_cast<int>(holes.size()));
     int full = 0, ball = 0;
-    const auto r = experiments::collect(sys, holes, o, a->out, [&](int done, int, const teacher::Example& e) {
-      full += e.full_putts;
-      ball += e.ball_putts;
-      bar.update(done, fmt::format("({} full-system, {} ball-only putts)", full, ball));
-    });
+    const auto r =
+        experiments::collect(sys, holes, o, a->out, [&](int done, int, const teacher::Example& e) {
+          full += e.full_putts;
+          ball += e.ball_putts;
+          bar.update(done, fmt::format("({} full-system, {} ball-only putts)", full, ball));
+        });
     bar.finish();
     int found = 0;
     for (const auto& e : r.examples) found += e.found;
     if (found == 0)
-      throw InputError(fmt::format("collect: no sinking putt in any of the {} situations on {}: the region is "
-                                   "unplayable (the attempts are recorded in {})",
-                                   r.examples.size(), sys.field().name, a->out));
-    fmt::print("collected {} of {} situations on {} ({}{}; {} resumed, {} replaced by the continuity pass): {} "
-               "full-system and {} ball-only putts; written to {}\n",
-               found, r.examples.size(), sys.field().name, teacher::to_string(o.teacher.strategy),
-               o.teacher.learn_speed ? "" : fmt::format(", angle only at {} m/s", o.teacher.fixed_speed), r.resumed,
-               r.repaired, r.full_putts, r.ball_putts, a->out);
+      throw InputError(
+          fmt::format("collect: no sinking putt in any of the {} situations on {}: the region is "
+                      "unplayable (the attempts are recorded in {})",
+                      r.examples.size(), sys.field().name, a->out));
+    fmt::print(
+        "collected {} of {} situations on {} ({}{}; {} resumed, {} replaced by the continuity "
+        "pass): {} "
+        "full-system and {} ball-only putts; written to {}\n",
+        found, r.examples.size(), sys.field().name, teacher::to_string(o.teacher.strategy),
+        o.teacher.learn_speed ? "" : fmt::format(", angle only at {} m/s", o.teacher.fixed_speed),
+        r.resumed, r.repaired, r.full_putts, r.ball_putts, a->out);
   });
 }
 
@@ -174,27 +197,42 @@ void add_evaluate(CLI::App& app) {
     double perception_noise = 0.0, torque_noise = 0.0;
   };
   auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("evaluate", "The robot plays random test situations with a learned model (thesis 6.3)");
+  CLI::App* cmd = app.add_subcommand(
+      "evaluate", "The robot plays random test situations with a learned model (thesis 6.3)");
   add_system_options(cmd, a->sys);
   cmd->add_option("--model", a->model, "Learner model file (minigolf train)")->required();
   cmd->add_option("--situations", a->situations, "Number of random test situations")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  cmd->add_option("--region", a->situations_spec, "Region instead of the field's (as collect --situations)");
-  cmd->add_option("--seed", a->seed, "Seed of the test situations")->check(unsigned_integer())->capture_default_str();
-  cmd->add_option("--strategy", a->strategy, "The oracle teacher's strategy (default: the field's)");
-  cmd->add_flag("--no-oracle", a->no_oracle, "Skip the oracle ceiling (the teacher on every situation)");
+  cmd->add_option("--region", a->situations_spec,
+                  "Region instead of the field's (as collect --situations)");
+  cmd->add_option("--seed", a->seed, "Seed of the test situations")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  cmd->add_option("--strategy", a->strategy,
+                  "The oracle teacher's strategy (default: the field's)");
+  cmd->add_flag("--no-oracle", a->no_oracle,
+                "Skip the oracle ceiling (the teacher on every situation)");
   cmd->add_flag("--json", a->json, "Print one JSON object");
   cmd->add_option("-o,--output", a->rows, "Also write one CSV row per situation here");
-  cmd->add_flag("--learn", a->learn, "Keep learning while playing: each putt's hindsight labels correct the model (implies --no-oracle)");
-  cmd->add_option("--learn-mode", a->learn_mode, "With --learn: residual (the model is a prior, a residual GP learns) | append (labels join a GPR model's data)")->capture_default_str();
-  cmd->add_option("--save-model", a->save_model, "With --learn: write the model as it ends up here");
-  cmd->add_option("--perception-noise", a->perception_noise, "Std [m] of the perceived hole and ball positions, per axis");
-  cmd->add_option("--torque-noise", a->torque_noise, "Joint torque noise std, fraction of the limits");
+  cmd->add_flag("--learn", a->learn,
+                "Keep learning while playing: each putt's hindsight labels correct the model "
+                "(implies --no-oracle)");
+  cmd->add_option("--learn-mode", a->learn_mode,
+                  "With --learn: residual (the model is a prior, a residual GP learns) | append "
+                  "(labels join a GPR model's data)")
+      ->capture_default_str();
+  cmd->add_option("--save-model", a->save_model,
+                  "With --learn: write the model as it ends up here");
+  cmd->add_option("--perception-noise", a->perception_noise,
+                  "Std [m] of the perceived hole and ball positions, per axis");
+  cmd->add_option("--torque-noise", a->torque_noise,
+                  "Joint torque noise std, fraction of the limits");
   cmd->callback([a] {
     if (!a->save_model.empty() && !a->learn) throw InputError("--save-model: only with --learn");
     const learning::Model model = learning::load_model(a->model);
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
+                             load_plant_arg(a->sys.plant));
     experiments::check_playable_model(model, a->model, &sys);
     const field::Situations region = field::region_from_spec(sys.field(), a->situations_spec);
     experiments::EvaluateOptions o;
@@ -206,35 +244,44 @@ void add_evaluate(CLI::App& app) {
     o.perception_noise = a->perception_noise;
     o.torque_noise = a->torque_noise;
     if (a->learn) o.oracle = false;
-    if (a->learn_mode == "residual") o.learn = experiments::LearnMode::kResidual;
-    else if (a->learn_mode == "append") o.learn = experiments::LearnMode::kAppend;
-    else throw InputError(fmt::format("--learn-mode: expected residual or append, got '{}'", a->learn_mode));
+    if (a->learn_mode == "residual")
+      o.learn = experiments::LearnMode::kResidual;
+    else if (a->learn_mode == "append")
+      o.learn = experiments::LearnMode::kAppend;
+    else
+      throw InputError(
+          fmt::format("--learn-mode: expected residual or append, got '{}'", a->learn_mode));
     Progress bar("evaluate", a->situations);
     experiments::Evaluation e;
     std::vector<int> labels_added;
     if (a->learn) {
-      auto le = experiments::evaluate_learning(sys, model, region, o, [&](int done, int) { bar.update(done); });
+      auto le = experiments::evaluate_learning(sys, model, region, o,
+                                               [&](int done, int) { bar.update(done); });
       e = std::move(le.evaluation);
       labels_added = std::move(le.labels_added);
       if (!a->save_model.empty()) learning::save_model(le.learned, a->save_model);
     } else {
-      e = experiments::evaluate_model(sys, model, region, o, [&](int done, int) { bar.update(done); });
+      e = experiments::evaluate_model(sys, model, region, o,
+                                      [&](int done, int) { bar.update(done); });
     }
     bar.finish();
     int first_half = 0, second_half = 0, added = 0;
-    for (std::size_t i = 0; i < e.rows.size(); ++i) (2 * i < e.rows.size() ? first_half : second_half) += e.rows[i].sunk;
+    for (std::size_t i = 0; i < e.rows.size(); ++i)
+      (2 * i < e.rows.size() ? first_half : second_half) += e.rows[i].sunk;
     for (int k : labels_added) added += k;
     if (!a->rows.empty()) write_file_atomic(a->rows, experiments::evaluation_csv(e, sys.field()));
     if (a->json) {
       nlohmann::json rows = nlohmann::json::array();
       for (const auto& r : e.rows)
-        rows.push_back({{"hole", r.hole},
-                        {"angle", r.predicted.angle},
-                        {"speed", r.predicted.speed},
-                        {"in_envelope", r.in_envelope},
-                        {"sunk", r.sunk},
-                        {"closest_approach", r.in_envelope ? nlohmann::json(r.outcome.closest_approach) : nlohmann::json()},
-                        {"oracle_found", o.oracle ? nlohmann::json(r.oracle_found) : nlohmann::json()}});
+        rows.push_back(
+            {{"hole", r.hole},
+             {"angle", r.predicted.angle},
+             {"speed", r.predicted.speed},
+             {"in_envelope", r.in_envelope},
+             {"sunk", r.sunk},
+             {"closest_approach",
+              r.in_envelope ? nlohmann::json(r.outcome.closest_approach) : nlohmann::json()},
+             {"oracle_found", o.oracle ? nlohmann::json(r.oracle_found) : nlohmann::json()}});
       const nlohmann::json j = {
           {"field", sys.field().name},
           {"model", a->model},
@@ -253,15 +300,17 @@ void add_evaluate(CLI::App& app) {
       fmt::print("{}\n", j.dump());
       return;
     }
-    fmt::print("{} on {}: sunk {} of {} = {:.1f} % (95 % CI {:.1f}-{:.1f} %){}\n", learning::method_name(model.method),
-               sys.field().name, e.sunk, a->situations, 100.0 * e.success_ratio, 100.0 * e.ci95[0],
-               100.0 * e.ci95[1],
-               o.oracle ? fmt::format("; oracle ceiling {:.1f} % ({} of {})", 100.0 * e.oracle_ceiling, e.oracle_found,
-                                      a->situations)
+    fmt::print("{} on {}: sunk {} of {} = {:.1f} % (95 % CI {:.1f}-{:.1f} %){}\n",
+               learning::method_name(model.method), sys.field().name, e.sunk, a->situations,
+               100.0 * e.success_ratio, 100.0 * e.ci95[0], 100.0 * e.ci95[1],
+               o.oracle ? fmt::format("; oracle ceiling {:.1f} % ({} of {})",
+                                      100.0 * e.oracle_ceiling, e.oracle_found, a->situations)
                         : "");
     if (a->learn)
-      fmt::print("learning while playing: {} hindsight labels added; first half sunk {} of {}, second half {} of {}\n", added,
-                 first_half, (e.rows.size() + 1) / 2, second_half, e.rows.size() / 2);
+      fmt::print(
+          "learning while playing: {} hindsight labels added; first half sunk {} of {}, second "
+          "half {} of {}\n",
+          added, first_half, (e.rows.size() + 1) / 2, second_half, e.rows.size() / 2);
   });
 }
 
@@ -275,19 +324,31 @@ void add_self_teach(CLI::App& app) {
     std::uint64_t seed = 1;
   };
   auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("self-teach", "The robot learns a field from its own putts alone: no teacher, no data set");
+  CLI::App* cmd = app.add_subcommand(
+      "self-teach", "The robot learns a field from its own putts alone: no teacher, no data set");
   add_system_options(cmd, a->sys);
-  cmd->add_option("--budget", a->budget, "Full-system putts it may spend, misses included")->required();
-  cmd->add_option("--seed", a->seed, "Seed (candidate targets, GP restarts)")->check(unsigned_integer())->capture_default_str();
-  cmd->add_option("--batch", a->batch, "Putts chosen together per round and played in parallel (the result depends on it, not on --threads)")
+  cmd->add_option("--budget", a->budget, "Full-system putts it may spend, misses included")
+      ->required();
+  cmd->add_option("--seed", a->seed, "Seed (candidate targets, GP restarts)")
+      ->check(unsigned_integer())
       ->capture_default_str();
-  cmd->add_option("--situations", a->situations, "Region instead of the field's (as collect --situations)");
-  cmd->add_option("--strategy", a->strategy, "min-speed | min-angle (default: the field's situations.strategy)");
+  cmd->add_option("--batch", a->batch,
+                  "Putts chosen together per round and played in parallel (the result depends on "
+                  "it, not on --threads)")
+      ->capture_default_str();
+  cmd->add_option("--situations", a->situations,
+                  "Region instead of the field's (as collect --situations)");
+  cmd->add_option("--strategy", a->strategy,
+                  "min-speed | min-angle (default: the field's situations.strategy)");
   cmd->add_option("--log", a->log, "Also write one CSV row per putt here");
-  cmd->add_option("--arrival-speed", a->arrival, "Ball speed [m/s] to reach the hole with (default: the strategy's)")
+  cmd->add_option("--arrival-speed", a->arrival,
+                  "Ball speed [m/s] to reach the hole with (default: the strategy's)")
       ->check(finite_number(0.0, 2.0));
-  cmd->add_option("-o,--output", a->out, "Learner model file to write (as minigolf train)")->required();
-  cmd->add_option("--prior", a->prior, "Start from this learner model (learned elsewhere; the result is a residual over it)");
+  cmd->add_option("-o,--output", a->out, "Learner model file to write (as minigolf train)")
+      ->required();
+  cmd->add_option(
+      "--prior", a->prior,
+      "Start from this learner model (learned elsewhere; the result is a residual over it)");
   cmd->callback([a] {
     selfteach::SelfTeachOptions o;
     if (!a->prior.empty()) {
@@ -301,59 +362,83 @@ void add_self_teach(CLI::App& app) {
     o.threads = a->sys.threads;
     o.arrival_speed = a->arrival;
     o.validate();
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
+                             load_plant_arg(a->sys.plant));
     field::Situations region = field::region_from_spec(sys.field(), a->situations);
-    if (!a->strategy.empty()) region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));
+    if (!a->strategy.empty())
+      region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));
     Progress bar("self-teach", o.budget);
     const auto r = selfteach::self_teach(sys, region, o, [&](int done, int) { bar.update(done); });
     bar.finish();
     if (!a->log.empty()) {
-      std::string csv = "index,target_x,target_y,angle,speed,hit,sunk,closest_approach,launch_angle,launch_speed,labels,label_distance\n";
+      std::string csv =
+          "index,target_x,target_y,angle,speed,hit,sunk,closest_approach,launch_angle,launch_speed,"
+          "labels,label_distance\n";
       for (std::size_t i = 0; i < r.putts.size(); ++i) {
         const auto& p = r.putts[i];
-        csv += fmt::format("{},{},{},{},{},{:d},{:d},{},{},{},{},{}\n", i, p.target[0], p.target[1], p.angle, p.speed,
-                           p.hit, p.sunk, p.closest_approach, p.launch_angle, p.launch_speed, p.labels, p.label_distance);
+        csv += fmt::format("{},{},{},{},{},{:d},{:d},{},{},{},{},{}\n", i, p.target[0], p.target[1],
+                           p.angle, p.speed, p.hit, p.sunk, p.closest_approach, p.launch_angle,
+                           p.launch_speed, p.labels, p.label_distance);
       }
       write_file_atomic(a->log, csv);
     }
     if (!r.trained)
-      throw InputError(fmt::format("self-teach: field '{}': {} hindsight label(s) in the region after {} putts (need "
-                                   "{}): no putt's path crossed the region{}",
-                                   sys.field().name, r.labels.size(), r.putts.size(), o.prior ? 1 : 2,
-                                   a->log.empty() ? "" : fmt::format(" (the putts are in {})", a->log)));
+      throw InputError(fmt::format(
+          "self-teach: field '{}': {} hindsight label(s) in the region after {} putts (need "
+          "{}): no putt's path crossed the region{}",
+          sys.field().name, r.labels.size(), r.putts.size(), o.prior ? 1 : 2,
+          a->log.empty() ? "" : fmt::format(" (the putts are in {})", a->log)));
     learning::save_model(r.model, a->out);
-    fmt::print("self-taught {} in {} full-system putts ({} sank while learning): {} hindsight labels{}; labels at "
-               "their own target sank {} of {}; model written to {}\n",
-               sys.field().name, r.putts.size(), r.sunk, r.labels.size(),
-               region.learn_speed ? fmt::format(" at arrival speed {:.3g} m/s", r.arrival_speed)
-                                  : fmt::format(" (angle only at {} m/s)", region.speed),
-               r.on_target_sunk, r.on_target, a->out);
+    fmt::print(
+        "self-taught {} in {} full-system putts ({} sank while learning): {} hindsight labels{}; "
+        "labels at "
+        "their own target sank {} of {}; model written to {}\n",
+        sys.field().name, r.putts.size(), r.sunk, r.labels.size(),
+        region.learn_speed ? fmt::format(" at arrival speed {:.3g} m/s", r.arrival_speed)
+                           : fmt::format(" (angle only at {} m/s)", region.speed),
+        r.on_target_sunk, r.on_target, a->out);
   });
 }
 
 void add_curves(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string learner = "self-teach", checkpoints = "10,25,50,100,150", situations_spec, out, prior;
+    std::string learner = "self-teach", checkpoints = "10,25,50,100,150", situations_spec, out,
+                prior;
     experiments::CurveOptions o;
   };
   auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("curves", "Learning curves: test success against full-system putts spent, per seed");
+  CLI::App* cmd = app.add_subcommand(
+      "curves", "Learning curves: test success against full-system putts spent, per seed");
   add_system_options(cmd, a->sys);
-  cmd->add_option("--learner", a->learner, "self-teach | teacher-gpr | crkr | adapt | adapt-play | append (the last three start from --prior)")->capture_default_str();
-  cmd->add_option("--prior", a->prior, "Learner model to adapt (adapt, adapt-play, append), e.g. trained in the nominal simulator");
-  cmd->add_option("--checkpoints", a->checkpoints, "Putt counts, increasing, comma-separated")->capture_default_str();
+  cmd->add_option("--learner", a->learner,
+                  "self-teach | teacher-gpr | crkr | adapt | adapt-play | append (the last three "
+                  "start from --prior)")
+      ->capture_default_str();
+  cmd->add_option(
+      "--prior", a->prior,
+      "Learner model to adapt (adapt, adapt-play, append), e.g. trained in the nominal simulator");
+  cmd->add_option("--checkpoints", a->checkpoints, "Putt counts, increasing, comma-separated")
+      ->capture_default_str();
   cmd->add_option("--seeds", a->o.seeds, "Runs")->capture_default_str();
-  cmd->add_option("--situations", a->o.situations, "Test situations per checkpoint")->capture_default_str();
-  cmd->add_option("--seed", a->o.seed, "Seed of the runs")->check(unsigned_integer())->capture_default_str();
-  cmd->add_option("--test-seed", a->o.test_seed, "Seed of the test situations")->check(unsigned_integer())->capture_default_str();
-  cmd->add_option("--region", a->situations_spec, "Region instead of the field's (as collect --situations)");
+  cmd->add_option("--situations", a->o.situations, "Test situations per checkpoint")
+      ->capture_default_str();
+  cmd->add_option("--seed", a->o.seed, "Seed of the runs")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  cmd->add_option("--test-seed", a->o.test_seed, "Seed of the test situations")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  cmd->add_option("--region", a->situations_spec,
+                  "Region instead of the field's (as collect --situations)");
   cmd->add_option("-o,--output", a->out, "CSV to write")->required();
   cmd->callback([a] {
     const experiments::CurveLearner learner = experiments::parse_curve_learner(a->learner);
     if (experiments::needs_prior(learner) != !a->prior.empty())
-      throw InputError(a->prior.empty() ? fmt::format("--learner {}: needs --prior MODEL", a->learner)
-                                        : fmt::format("--prior: only with --learner adapt, adapt-play or append"));
+      throw InputError(
+          a->prior.empty()
+              ? fmt::format("--learner {}: needs --prior MODEL", a->learner)
+              : fmt::format("--prior: only with --learner adapt, adapt-play or append"));
     if (!a->prior.empty()) {
       auto prior = std::make_shared<learning::Model>(learning::load_model(a->prior));
       experiments::check_playable_model(*prior, a->prior);
@@ -361,23 +446,30 @@ void add_curves(CLI::App& app) {
     }
     a->o.checkpoints.clear();
     for (const auto& c : parse_names("--checkpoints", a->checkpoints))
-      a->o.checkpoints.push_back(static_cast<int>(std::min<std::uint64_t>(parse_unsigned("--checkpoints", c), 1000000)));
-    if (a->o.prior && learner == experiments::CurveLearner::kAppend && (a->o.prior->method != learning::Method::kGpr || a->o.prior->prior))
-      throw InputError(fmt::format("--learner append: needs a plain GPR prior ({} keeps no data to append to)", a->prior));
+      a->o.checkpoints.push_back(
+          static_cast<int>(std::min<std::uint64_t>(parse_unsigned("--checkpoints", c), 1000000)));
+    if (a->o.prior && learner == experiments::CurveLearner::kAppend &&
+        (a->o.prior->method != learning::Method::kGpr || a->o.prior->prior))
+      throw InputError(fmt::format(
+          "--learner append: needs a plain GPR prior ({} keeps no data to append to)", a->prior));
     a->o.threads = a->sys.threads;
     a->o.validate();
     check_output_file(a->out);  // before minutes of putts, not after
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model), load_plant_arg(a->sys.plant));
+    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
+                             load_plant_arg(a->sys.plant));
     const field::Situations region = field::region_from_spec(sys.field(), a->situations_spec);
     a->o.teacher = teacher::options_for(region, "");
     Progress bar("curves", a->o.seeds);
-    const auto runs = experiments::learning_curves(sys, region, learner, a->o, [&](int done, int) { bar.update(done); });
+    const auto runs = experiments::learning_curves(sys, region, learner, a->o,
+                                                   [&](int done, int) { bar.update(done); });
     bar.finish();
     write_file_atomic(a->out, experiments::curves_csv(runs));
     const auto s = experiments::summarize(runs);
     for (std::size_t k = 0; k < s.putts.size(); ++k)
-      fmt::print("{} on {} after {} putts: median {:.1f} % (10-90 %: {:.1f}-{:.1f} %) over {} runs\n", a->learner,
-                 sys.field().name, s.putts[k], 100 * s.median[k], 100 * s.q10[k], 100 * s.q90[k], runs.size());
+      fmt::print(
+          "{} on {} after {} putts: median {:.1f} % (10-90 %: {:.1f}-{:.1f} %) over {} runs\n",
+          a->learner, sys.field().name, s.putts[k], 100 * s.median[k], 100 * s.q10[k],
+          100 * s.q90[k], runs.size());
   });
 }
 
@@ -386,32 +478,48 @@ void add_reproduce(CLI::App& app) {
   auto out = std::make_shared<std::string>("out/reproduce");
   auto datasets = std::make_shared<std::string>();
   auto fields = std::make_shared<std::string>("flat,multiple-hills,regular-hill,arctan");
-  CLI::App* cmd = app.add_subcommand("reproduce", "Thesis chapter 6 end to end: data sets, training, MSE, the robot playing, figures, report.md");
-  cmd->add_flag("--no-beyond", [o](std::int64_t) { o->beyond = false; }, "Skip the beyond-the-thesis part (self-teaching, baselines, noise)");
-  cmd->add_flag("--quick", o->quick, "30 test situations, 3 learning-curve subsets, 100 arctan splits (under 10 min on 2 cores)");
+  CLI::App* cmd = app.add_subcommand("reproduce",
+                                     "Thesis chapter 6 end to end: data sets, training, MSE, the "
+                                     "robot playing, figures, report.md");
+  cmd->add_flag(
+      "--no-beyond", [o](std::int64_t) { o->beyond = false; },
+      "Skip the beyond-the-thesis part (self-teaching, baselines, noise)");
+  cmd->add_flag(
+      "--quick", o->quick,
+      "30 test situations, 3 learning-curve subsets, 100 arctan splits (under 10 min on 2 cores)");
   cmd->add_option("-o,--output", *out, "Output folder")->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Threads (0: all cores; results do not depend on it)")->check(CLI::Range(0, 256));
-  cmd->add_option("--seed", o->seed, "Seed of test situations, splits and subsets")->check(unsigned_integer())->capture_default_str();
-  cmd->add_flag("--collect", o->collect, "Collect the data sets with the teacher instead of using the shipped ones");
-  cmd->add_option("--datasets", *datasets, "Folder with <field>.csv and <field>-validation.csv (default: data/datasets)");
+  cmd->add_option("--threads", o->threads, "Threads (0: all cores; results do not depend on it)")
+      ->check(CLI::Range(0, 256));
+  cmd->add_option("--seed", o->seed, "Seed of test situations, splits and subsets")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  cmd->add_flag("--collect", o->collect,
+                "Collect the data sets with the teacher instead of using the shipped ones");
+  cmd->add_option("--datasets", *datasets,
+                  "Folder with <field>.csv and <field>-validation.csv (default: data/datasets)");
   cmd->add_option("--fields", *fields, "Fields, comma-separated")->capture_default_str();
   cmd->add_option("--config", o->config, "Module config YAML");
   cmd->add_flag("!--no-plots", o->plots, "Skip the matplotlib figures");
-  cmd->add_flag("!--no-real-robot", o->real_robot, "Skip the real-robot rows (a plant standing in for the real WAM)");
-  cmd->add_option("--real-robot-plant", o->real_robot_plant, "The plant standing in for the real WAM (default: data/plants/real-wam.yaml)");
+  cmd->add_flag("!--no-real-robot", o->real_robot,
+                "Skip the real-robot rows (a plant standing in for the real WAM)");
+  cmd->add_option("--real-robot-plant", o->real_robot_plant,
+                  "The plant standing in for the real WAM (default: data/plants/real-wam.yaml)");
   cmd->add_option("--plant", o->plant, kPlantHelp);
   cmd->callback([o, out, datasets, fields] {
     o->out = *out;
     o->datasets = *datasets;
     o->fields = parse_names("--fields", *fields);
-    if (const char* rev = std::getenv("MINIGOLF_REVISION")) o->revision = rev;
+    if (const char* rev = std::getenv("MINIGOLF_REVISION"))
+      o->revision = rev;
     else {
-      const std::string cmd = "git -C " + shell_quote(data_dir().parent_path().string()) + " rev-parse --short HEAD 2>/dev/null";
+      const std::string cmd = "git -C " + shell_quote(data_dir().parent_path().string()) +
+                              " rev-parse --short HEAD 2>/dev/null";
       if (FILE* p = popen(cmd.c_str(), "r")) {
         char buf[64] = "";
         if (std::fgets(buf, sizeof buf, p)) {
           o->revision = buf;
-          while (!o->revision.empty() && (o->revision.back() == '\n' || o->revision.back() == '\r')) o->revision.pop_back();
+          while (!o->revision.empty() && (o->revision.back() == '\n' || o->revision.back() == '\r'))
+            o->revision.pop_back();
         }
         pclose(p);
       }

@@ -60,7 +60,8 @@ struct DsArgs {
 };
 
 void add_ds_inputs(CLI::App* cmd, DsArgs& a) {
-  cmd->add_option("--hitting-model", a.hitting_model, "Hitting DS model (default: the shipped one)");
+  cmd->add_option("--hitting-model", a.hitting_model,
+                  "Hitting DS model (default: the shipped one)");
   cmd->add_option("--demos", a.demos, "Demonstrations CSV (default: data/demos/default.csv)");
   cmd->add_option("-o,--output", a.out, "PNG to write")->required();
   cmd->add_option("--data-dir", a.data_dir, "Keep the exported CSV files here");
@@ -74,28 +75,33 @@ struct DsInputs {
 DsInputs load_ds_inputs(const DsArgs& a) {
   const control::ModuleConfig config = system::load_config("", "", a.hitting_model);
   DsInputs in{ds::read_hitting_model(config.hitting_model),
-              ds::read_demonstrations(system::resolve_data_path(a.demos.empty() ? "data/demos/default.csv" : a.demos))};
+              ds::read_demonstrations(
+                  system::resolve_data_path(a.demos.empty() ? "data/demos/default.csv" : a.demos))};
   if (in.demos.empty()) throw InputError("plot: no demonstrations");
   return in;
 }
 
 void add_plot_ds(CLI::App* plot) {
   auto a = std::make_shared<DsArgs>();
-  CLI::App* cmd = plot->add_subcommand("ds", "The hitting DS: demonstrations, GMM ellipses (2 sigma), streamlines");
+  CLI::App* cmd = plot->add_subcommand(
+      "ds", "The hitting DS: demonstrations, GMM ellipses (2 sigma), streamlines");
   add_ds_inputs(cmd, *a);
-  cmd->add_option("--plane", a->plane, "xz (side view through x*) | xy (top view)")->capture_default_str();
+  cmd->add_option("--plane", a->plane, "xz (side view through x*) | xy (top view)")
+      ->capture_default_str();
   cmd->callback([a] {
     const viz::DsPlane plane = viz::parse_ds_plane(a->plane);
     const DsInputs in = load_ds_inputs(*a);
     const DataDir dir(a->data_dir);
-    const auto demos = dir.write("ds_demonstrations.csv", viz::demonstrations_csv(in.demos, in.model));
+    const auto demos =
+        dir.write("ds_demonstrations.csv", viz::demonstrations_csv(in.demos, in.model));
     const auto gmm = dir.write("ds_gmm.csv", viz::gmm_csv(in.model));
     const auto field = dir.write("ds_field.csv", viz::ds_field_csv(in.model, in.demos, plane));
     const auto& xs = in.model.x_star();
-    run_plot_script(fmt::format("ds {} {} {} {} --plane {} --target={},{},{}", shell_quote(demos.string()),
-                                shell_quote(gmm.string()), shell_quote(field.string()), shell_quote(a->out),
-                                a->plane, xs.x(), xs.y(), xs.z()),
-                    a->out);
+    run_plot_script(
+        fmt::format("ds {} {} {} {} --plane {} --target={},{},{}", shell_quote(demos.string()),
+                    shell_quote(gmm.string()), shell_quote(field.string()), shell_quote(a->out),
+                    a->plane, xs.x(), xs.y(), xs.z()),
+        a->out);
     fmt::print("wrote {} ({} demonstrations, {} Gaussians, {} plane)\n", a->out, in.demos.size(),
                in.model.seds_gmm().num_components(), a->plane);
   });
@@ -103,20 +109,25 @@ void add_plot_ds(CLI::App* plot) {
 
 void add_plot_strength(CLI::App* plot) {
   auto a = std::make_shared<DsArgs>();
-  CLI::App* cmd = plot->add_subcommand("strength", "The strength factor along the demonstrations and both speed modulators");
+  CLI::App* cmd = plot->add_subcommand(
+      "strength", "The strength factor along the demonstrations and both speed modulators");
   add_ds_inputs(cmd, *a);
-  cmd->add_option("--speeds", a->speeds, "Club speeds v^d [m/s] of the modulator curves, a,b,...")->capture_default_str();
+  cmd->add_option("--speeds", a->speeds, "Club speeds v^d [m/s] of the modulator curves, a,b,...")
+      ->capture_default_str();
   cmd->callback([a] {
     std::vector<double> speeds;
-    for (const auto& s : parse_names("--speeds", a->speeds)) speeds.push_back(parse_number("--speeds", s));
+    for (const auto& s : parse_names("--speeds", a->speeds))
+      speeds.push_back(parse_number("--speeds", s));
     const DsInputs in = load_ds_inputs(*a);
     const DataDir dir(a->data_dir);
     const auto strength = dir.write("strength.csv", viz::strength_csv(in.model, in.demos));
     const auto mods = dir.write("modulators.csv", viz::modulators_csv(in.model, in.demos, speeds));
-    run_plot_script(fmt::format("strength {} {} {} --default-speed {}", shell_quote(strength.string()),
-                                shell_quote(mods.string()), shell_quote(a->out), in.model.default_speed()),
-                    a->out);
-    fmt::print("wrote {} (v(x*) = {:.3f} m/s, {} demonstrations)\n", a->out, in.model.default_speed(), in.demos.size());
+    run_plot_script(
+        fmt::format("strength {} {} {} --default-speed {}", shell_quote(strength.string()),
+                    shell_quote(mods.string()), shell_quote(a->out), in.model.default_speed()),
+        a->out);
+    fmt::print("wrote {} (v(x*) = {:.3f} m/s, {} demonstrations)\n", a->out,
+               in.model.default_speed(), in.demos.size());
   });
 }
 
@@ -126,17 +137,21 @@ void add_plot_field(CLI::App* plot) {
     std::vector<std::string> shots;
   };
   auto a = std::make_shared<Args>();
-  CLI::App* cmd = plot->add_subcommand("field", "A field's height colour map with ball-only trajectories");
+  CLI::App* cmd =
+      plot->add_subcommand("field", "A field's height colour map with ball-only trajectories");
   cmd->add_option("--field", a->field, "Shipped field name or path")->capture_default_str();
   cmd->add_option("--config", a->config, "Module config YAML");
   cmd->add_option("--hole", a->hole, "Hole centre X,Y [m] (default: the field's)");
-  cmd->add_option("--shot", a->shots, "ANGLE,SPEED launch of a ball-only putt [rad, m/s]; repeat (default: 3 at the hole)");
+  cmd->add_option(
+      "--shot", a->shots,
+      "ANGLE,SPEED launch of a ball-only putt [rad, m/s]; repeat (default: 3 at the hole)");
   cmd->add_option("-o,--output", a->out, "PNG to write")->required();
   cmd->add_option("--data-dir", a->data_dir, "Keep the exported CSV files here");
   cmd->callback([a] {
     const system::System sys(system::load_config(a->config, a->field));
     const field::Field& f = sys.field();
-    const std::array<double, 2> hole = a->hole.empty() ? f.hole.position : parse_vector<2>("--hole", a->hole);
+    const std::array<double, 2> hole =
+        a->hole.empty() ? f.hole.position : parse_vector<2>("--hole", a->hole);
     field::check_hole_position(f, hole);
     std::vector<std::array<double, 2>> shots;
     for (const auto& s : a->shots) shots.push_back(parse_vector<2>("--shot", s));
@@ -145,7 +160,8 @@ void add_plot_field(CLI::App* plot) {
       for (double v : {0.9, 1.2, 1.5}) shots.push_back({dir, v});
     }
     for (const auto& s : shots)
-      if (!(s[1] > 0.0 && s[1] <= 10.0)) throw InputError(fmt::format("--shot: speed {} m/s: expected (0, 10]", s[1]));
+      if (!(s[1] > 0.0 && s[1] <= 10.0))
+        throw InputError(fmt::format("--shot: speed {} m/s: expected (0, 10]", s[1]));
     const DataDir dir(a->data_dir);
     const auto heights = dir.write("field_heights.csv", viz::heights_csv(f));
     system::SystemData d(sys);
@@ -155,10 +171,12 @@ void add_plot_field(CLI::App* plot) {
       const auto t = dir.write(fmt::format("field_path_{}.csv", k), viz::trajectory_csv(out));
       args += fmt::format(" --trajectory {}", shell_quote(t.string()));
     }
-    run_plot_script(fmt::format("field {} {}{} --hole={},{} --tee={},{} --title {}", shell_quote(heights.string()),
-                                shell_quote(a->out), args, hole[0], hole[1], f.tee[0], f.tee[1],
-                                shell_quote(fmt::format("{}: height map and ball-only paths", f.name))),
-                    a->out);
+    run_plot_script(
+        fmt::format("field {} {}{} --hole={},{} --tee={},{} --title {}",
+                    shell_quote(heights.string()), shell_quote(a->out), args, hole[0], hole[1],
+                    f.tee[0], f.tee[1],
+                    shell_quote(fmt::format("{}: height map and ball-only paths", f.name))),
+        a->out);
     fmt::print("wrote {} ({} ball paths)\n", a->out, shots.size());
   });
 }
@@ -168,7 +186,8 @@ void add_plot_model(CLI::App* plot) {
     std::string model, data, validation, output, out, data_dir;
   };
   auto a = std::make_shared<Args>();
-  CLI::App* cmd = plot->add_subcommand("model", "A learner's prediction surface with +-2 sigma and its training points");
+  CLI::App* cmd = plot->add_subcommand(
+      "model", "A learner's prediction surface with +-2 sigma and its training points");
   cmd->add_option("--model", a->model, "Parameter model JSON (minigolf train)")->required();
   cmd->add_option("--data", a->data, "Its training data CSV")->required();
   cmd->add_option("--validation", a->validation, "Validation data CSV (drawn as well)");
@@ -177,25 +196,32 @@ void add_plot_model(CLI::App* plot) {
   cmd->add_option("--data-dir", a->data_dir, "Keep the exported CSV files here");
   cmd->callback([a] {
     const learning::Model model = learning::load_model(system::resolve_data_path(a->model));
-    const learning::Dataset data = learning::load_dataset(system::resolve_data_path(a->data), model.input_names,
-                                                          model.output_names);
+    const learning::Dataset data = learning::load_dataset(system::resolve_data_path(a->data),
+                                                          model.input_names, model.output_names);
     if (!a->validation.empty())
-      learning::load_dataset(system::resolve_data_path(a->validation), model.input_names, model.output_names);
+      learning::load_dataset(system::resolve_data_path(a->validation), model.input_names,
+                             model.output_names);
     const std::string output = a->output.empty() ? model.output_names.front() : a->output;
-    if (std::find(model.output_names.begin(), model.output_names.end(), output) == model.output_names.end())
-      throw InputError(fmt::format("--output '{}': the model's outputs are {}", output, fmt::join(model.output_names, ", ")));
+    if (std::find(model.output_names.begin(), model.output_names.end(), output) ==
+        model.output_names.end())
+      throw InputError(fmt::format("--output '{}': the model's outputs are {}", output,
+                                   fmt::join(model.output_names, ", ")));
     const DataDir dir(a->data_dir);
     const auto pred = dir.write("model_predictions.csv", viz::predictions_csv(model, data));
     std::string inputs;
     for (const auto& n : model.input_names) inputs += (inputs.empty() ? "" : ",") + n;
-    run_plot_script(fmt::format("model {} --predictions {} --train {}{} --output {} --inputs {} --title {}",
-                                shell_quote(a->out), shell_quote(pred.string()),
-                                shell_quote(system::resolve_data_path(a->data).string()),
-                                a->validation.empty() ? "" : " --validation " + shell_quote(system::resolve_data_path(a->validation).string()),
-                                shell_quote(output), shell_quote(inputs),
-                                shell_quote(fmt::format("{} {}: mean ± 2σ and training points",
-                                                        learning::method_name(model.method), output))),
-                    a->out);
+    run_plot_script(
+        fmt::format(
+            "model {} --predictions {} --train {}{} --output {} --inputs {} --title {}",
+            shell_quote(a->out), shell_quote(pred.string()),
+            shell_quote(system::resolve_data_path(a->data).string()),
+            a->validation.empty()
+                ? ""
+                : " --validation " + shell_quote(system::resolve_data_path(a->validation).string()),
+            shell_quote(output), shell_quote(inputs),
+            shell_quote(fmt::format("{} {}: mean ± 2σ and training points",
+                                    learning::method_name(model.method), output))),
+        a->out);
     fmt::print("wrote {} ({} training points, output {})\n", a->out, data.inputs.rows(), output);
   });
 }
@@ -203,7 +229,8 @@ void add_plot_model(CLI::App* plot) {
 }  // namespace
 
 void add_plot_commands(CLI::App& app) {
-  CLI::App* plot = app.add_subcommand("plot", "Figures of the models: ds | strength | field | model");
+  CLI::App* plot =
+      app.add_subcommand("plot", "Figures of the models: ds | strength | field | model");
   plot->require_subcommand(1);
   add_plot_ds(plot);
   add_plot_strength(plot);

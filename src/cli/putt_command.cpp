@@ -1,8 +1,8 @@
 // putt --field F --hole X,Y --angle RAD --speed M/S [--ball-only] [--hitting-model FILE]
 //      [--config FILE] [--json]
 //      [--trajectory FILE]
-// Without --ball-only the simulated WAM hits the ball (control/full_system.hpp); --angle and --speed
-// are then the hitting angle and the club speed at the ball.
+// Without --ball-only the simulated WAM hits the ball (control/full_system.hpp); --angle and
+// --speed are then the hitting angle and the club speed at the ball.
 #include <cmath>
 #include <memory>
 
@@ -11,12 +11,12 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
-#include "system/system.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
 #include "sim/putt.hpp"
+#include "system/system.hpp"
 #include "viz/figure_data.hpp"
 
 namespace mg::cli {
@@ -43,13 +43,15 @@ nlohmann::json outcome_json(const std::string& field, std::array<double, 2> hole
 constexpr double kTrajectoryInterval = 0.01;
 
 // The arm hits the ball: the module runs in lockstep simulator mode.
-void run_full_system_putt(const std::string& field_name, const std::string& hole_text,
-                          double angle, double speed, double max_duration,
-                          const std::string& model_path, const std::string& config_path,
-                          const std::string& plant_path, bool json, const std::string& trajectory_path) {
-  const system::System sys(system::load_config(config_path, field_name, model_path), load_plant_arg(plant_path));
+void run_full_system_putt(const std::string& field_name, const std::string& hole_text, double angle,
+                          double speed, double max_duration, const std::string& model_path,
+                          const std::string& config_path, const std::string& plant_path, bool json,
+                          const std::string& trajectory_path) {
+  const system::System sys(system::load_config(config_path, field_name, model_path),
+                           load_plant_arg(plant_path));
   sys.check_request(angle, speed, "putt");
-  const auto hole = hole_text.empty() ? sys.field().hole.position : parse_vector<2>("--hole", hole_text);
+  const auto hole =
+      hole_text.empty() ? sys.field().hole.position : parse_vector<2>("--hole", hole_text);
   system::SystemData data(sys);
   control::FullPuttOptions options;
   options.max_duration = max_duration;
@@ -70,13 +72,13 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
                    {"overruns", r.timing.overruns}};
     fmt::print("{}\n", j.dump());
   } else {
-    fmt::print("{} on {} (arm): angle {:.4f} rad, club {:.3f} m/s -> launch {:.4f} rad, {:.3f} m/s; "
-               "{} after {:.2f} s; rest ({:.3f}, {:.3f}) m; closest approach {:.4f} m; core update "
-               "p99 {:.1f} us\n",
-               out.sunk ? "SUNK" : "missed", world.field().name, angle, r.club.speed,
-               r.launch.angle, r.launch.speed, sim::to_string(out.end), out.duration,
-               out.rest_position[0], out.rest_position[1], out.closest_approach,
-               r.timing.core_update_p99_us);
+    fmt::print(
+        "{} on {} (arm): angle {:.4f} rad, club {:.3f} m/s -> launch {:.4f} rad, {:.3f} m/s; "
+        "{} after {:.2f} s; rest ({:.3f}, {:.3f}) m; closest approach {:.4f} m; core update "
+        "p99 {:.1f} us\n",
+        out.sunk ? "SUNK" : "missed", world.field().name, angle, r.club.speed, r.launch.angle,
+        r.launch.speed, sim::to_string(out.end), out.duration, out.rest_position[0],
+        out.rest_position[1], out.closest_approach, r.timing.core_update_p99_us);
   }
 }
 
@@ -117,8 +119,8 @@ void add_putt_command(CLI::App& app) {
   cmd->add_option("--plant", o->plant, kPlantHelp);
   cmd->callback([o] {
     if (!o->ball_only) {
-      run_full_system_putt(o->field, o->hole, o->angle, o->speed, o->max_duration,
-                           o->hitting_model, o->config, o->plant, o->json, o->trajectory);
+      run_full_system_putt(o->field, o->hole, o->angle, o->speed, o->max_duration, o->hitting_model,
+                           o->config, o->plant, o->json, o->trajectory);
       return;
     }
     sim::PuttRequest request;
@@ -127,9 +129,11 @@ void add_putt_command(CLI::App& app) {
     request.max_duration = o->max_duration;
     request.record_interval = o->trajectory.empty() ? 0.0 : kTrajectoryInterval;
     request.validate();
-    const system::System sys(system::load_config(o->config, o->field, o->hitting_model), load_plant_arg(o->plant));
+    const system::System sys(system::load_config(o->config, o->field, o->hitting_model),
+                             load_plant_arg(o->plant));
     const sim::World& world = sys.ball_world();
-    const auto hole = o->hole.empty() ? sys.field().hole.position : parse_vector<2>("--hole", o->hole);
+    const auto hole =
+        o->hole.empty() ? sys.field().hole.position : parse_vector<2>("--hole", o->hole);
     field::check_hole_position(sys.field(), hole);
     const auto real = system::real_hole(sys, hole);
     field::check_hole_position(world.field(), real);
@@ -142,11 +146,12 @@ void add_putt_command(CLI::App& app) {
       j["plant"] = plant_json(sys.plant());
       fmt::print("{}\n", j.dump());
     } else {
-      fmt::print("{} on {}: angle {:.4f} rad, speed {:.3f} m/s -> {} after {:.2f} s; rest ({:.3f}, "
-                 "{:.3f}) m; closest approach {:.4f} m\n",
-                 out.sunk ? "SUNK" : "missed", world.field().name, o->angle, o->speed,
-                 sim::to_string(out.end), out.duration, out.rest_position[0], out.rest_position[1],
-                 out.closest_approach);
+      fmt::print(
+          "{} on {}: angle {:.4f} rad, speed {:.3f} m/s -> {} after {:.2f} s; rest ({:.3f}, "
+          "{:.3f}) m; closest approach {:.4f} m\n",
+          out.sunk ? "SUNK" : "missed", world.field().name, o->angle, o->speed,
+          sim::to_string(out.end), out.duration, out.rest_position[0], out.rest_position[1],
+          out.closest_approach);
     }
   });
 }

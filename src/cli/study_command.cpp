@@ -16,20 +16,22 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
-#include "experiments/launch_study.hpp"
-#include "system/distributed.hpp"
-#include "system/system.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "ds/hitting_model.hpp"
+#include "experiments/launch_study.hpp"
 #include "field/field.hpp"
+#include "system/distributed.hpp"
+#include "system/system.hpp"
 
 namespace mg::cli {
 namespace {
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+}
 
 nlohmann::json summary_json(const experiments::LaunchStudyResult& r) {
   const auto& o = r.options;
@@ -46,10 +48,14 @@ nlohmann::json summary_json(const experiments::LaunchStudyResult& r) {
                       {"launch_club_ratio_mean", number_or_null(s.mean_launch_club_ratio)},
                       {"launch_club_ratio_std", number_or_null(s.std_launch_club_ratio)}});
   }
-  return {{"field", r.field},     {"hole", o.hole},
-          {"hits", o.hits},       {"speed", o.speed},
-          {"torque_noise", o.torque_noise}, {"placement_noise", o.placement_noise},
-          {"seed", o.seed},       {"angles", angles}};
+  return {{"field", r.field},
+          {"hole", o.hole},
+          {"hits", o.hits},
+          {"speed", o.speed},
+          {"torque_noise", o.torque_noise},
+          {"placement_noise", o.placement_noise},
+          {"seed", o.seed},
+          {"angles", angles}};
 }
 
 }  // namespace
@@ -71,24 +77,39 @@ void add_study_commands(CLI::App& app) {
     int threads = 0;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* study = app.add_subcommand("study", "Experiments with the simulated arm (thesis ch. 6)");
+  CLI::App* study =
+      app.add_subcommand("study", "Experiments with the simulated arm (thesis ch. 6)");
   study->require_subcommand(1);
   CLI::App* cmd = study->add_subcommand(
-      "launch-error", "Launch-angle and hitting-speed error of repeated hits with execution noise (thesis 6.1)");
-  cmd->add_option("--field", o->field, "Shipped field name or path to a field file")->capture_default_str();
-  cmd->add_option("--angles-deg", o->angles, "Commanded hitting angles [deg], comma-separated")->capture_default_str();
-  cmd->add_option("--hits", o->hits, "Hits per angle")->check(unsigned_integer(100000))->check(CLI::Range(1, 100000))
+      "launch-error",
+      "Launch-angle and hitting-speed error of repeated hits with execution noise (thesis 6.1)");
+  cmd->add_option("--field", o->field, "Shipped field name or path to a field file")
       ->capture_default_str();
-  cmd->add_option("--speed", o->speed, "Commanded club speed [m/s]")->check(finite_number(-1e6, 1e6))->capture_default_str();
-  cmd->add_option("--torque-noise", o->torque_noise,
-                  "Joint-torque disturbance std, fraction of each joint's torque limit, per core tick")
-      ->check(finite_number(0.0, 1.0))->capture_default_str();
+  cmd->add_option("--angles-deg", o->angles, "Commanded hitting angles [deg], comma-separated")
+      ->capture_default_str();
+  cmd->add_option("--hits", o->hits, "Hits per angle")
+      ->check(unsigned_integer(100000))
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--speed", o->speed, "Commanded club speed [m/s]")
+      ->check(finite_number(-1e6, 1e6))
+      ->capture_default_str();
+  cmd->add_option(
+         "--torque-noise", o->torque_noise,
+         "Joint-torque disturbance std, fraction of each joint's torque limit, per core tick")
+      ->check(finite_number(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--placement-noise", o->placement_noise, "Ball placement std per axis [m]")
-      ->check(finite_number(0.0, 0.05))->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Noise seed")->check(unsigned_integer())->capture_default_str();
-  cmd->add_option("--out", o->out, "Output directory for launch_error.{csv,md,png}")->capture_default_str();
+      ->check(finite_number(0.0, 0.05))
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Noise seed")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  cmd->add_option("--out", o->out, "Output directory for launch_error.{csv,md,png}")
+      ->capture_default_str();
   cmd->add_option("--config", o->config, "Module config YAML");
-  cmd->add_option("--hitting-model", o->hitting_model, "Hitting DS model file (default: the shipped one)");
+  cmd->add_option("--hitting-model", o->hitting_model,
+                  "Hitting DS model file (default: the shipped one)");
   cmd->add_option("--threads", o->threads, "Threads (0: all cores; results do not depend on it)")
       ->check(CLI::Range(0, 256));
   cmd->add_flag("--json", o->json, "Print a JSON summary instead of the Markdown table");
@@ -109,11 +130,13 @@ void add_study_commands(CLI::App& app) {
     const control::ModuleConfig& config = sys.config();
     for (double a : opt.angles_deg)
       if (a * kDeg < config.angle_min || a * kDeg > config.angle_max)
-        throw InputError(fmt::format("--angles-deg: expected {:.1f}..{:.1f} deg (safe envelope), got {}",
-                                     config.angle_min / kDeg, config.angle_max / kDeg, a));
+        throw InputError(
+            fmt::format("--angles-deg: expected {:.1f}..{:.1f} deg (safe envelope), got {}",
+                        config.angle_min / kDeg, config.angle_max / kDeg, a));
     if (opt.speed < config.speed_min || opt.speed > config.speed_max)
-      throw InputError(fmt::format("--speed: expected {}..{} m/s (club speed, safe envelope), got {}",
-                                   config.speed_min, config.speed_max, o->speed));
+      throw InputError(
+          fmt::format("--speed: expected {}..{} m/s (club speed, safe envelope), got {}",
+                      config.speed_min, config.speed_max, o->speed));
     opt.validate();
 
     opt.hole = sys.field().hole.position;
@@ -124,12 +147,14 @@ void add_study_commands(CLI::App& app) {
         experiments::run_launch_study(sys, opt, o->threads, [&](const experiments::LaunchHit& h) {
           ++done;
           if (h.hit)
-            fmt::print(stderr, "[{}/{}] angle {:g} deg hit {}: launch error {:+.3f} deg, club {:.3f} m/s, launch {:.3f} m/s\n",
+            fmt::print(stderr,
+                       "[{}/{}] angle {:g} deg hit {}: launch error {:+.3f} deg, club {:.3f} m/s, "
+                       "launch {:.3f} m/s\n",
                        done, total, h.commanded_angle_deg, h.hit_index, h.launch_error_deg,
                        h.club_speed, h.launch_speed);
           else
-            fmt::print(stderr, "[{}/{}] angle {:g} deg hit {}: missed ({}; rest time {:.2f} s)\n", done,
-                       total, h.commanded_angle_deg, h.hit_index, h.failure, h.rest_time);
+            fmt::print(stderr, "[{}/{}] angle {:g} deg hit {}: missed ({}; rest time {:.2f} s)\n",
+                       done, total, h.commanded_angle_deg, h.hit_index, h.failure, h.rest_time);
           std::fflush(stderr);
         });
 

@@ -52,27 +52,39 @@ void add_vision_commands(CLI::App& app) {
       "vision-sim", "Publish simulated ball and hole positions over UDP (minigolf-vision/1)");
   cmd->add_option("--to", o->to, "Destination HOST:PORT")->capture_default_str();
   cmd->add_option("--rate", o->rate, "Messages per second [Hz], [0.001, 1000]")
-      ->check(finite_number(1e-3, 1000.0))->capture_default_str();
+      ->check(finite_number(1e-3, 1000.0))
+      ->capture_default_str();
   cmd->add_option("--duration", o->duration, "Publish for this long [s], [0.001, 3600]")
-      ->check(finite_number(1e-3, 3600.0))->capture_default_str();
+      ->check(finite_number(1e-3, 3600.0))
+      ->capture_default_str();
   cmd->add_option("--field", o->field, "Shipped field name or path to a field file")
       ->capture_default_str();
   cmd->add_option("--hole", o->hole, "Hole centre X,Y [m] (default: the field's)");
-  CLI::Option* angle_opt = cmd->add_option("--angle", o->angle, "Putt angle [rad]: publish a moving ball (needs --speed)")
-                               ->check(finite_number(-3.15, 3.15));
-  CLI::Option* speed_opt = cmd->add_option("--speed", o->speed, "Putt speed [m/s]: publish a moving ball (needs --angle)")
-                               ->check(finite_number(1e-3, 15.0));
+  CLI::Option* angle_opt =
+      cmd->add_option("--angle", o->angle,
+                      "Putt angle [rad]: publish a moving ball (needs --speed)")
+          ->check(finite_number(-3.15, 3.15));
+  CLI::Option* speed_opt =
+      cmd->add_option("--speed", o->speed,
+                      "Putt speed [m/s]: publish a moving ball (needs --angle)")
+          ->check(finite_number(1e-3, 15.0));
   cmd->add_option("--noise", o->noise, "Gaussian noise std on every coordinate [m], [0, 0.5]")
-      ->check(finite_number(0.0, 0.5))->capture_default_str();
+      ->check(finite_number(0.0, 0.5))
+      ->capture_default_str();
   cmd->add_option("--latency", o->latency, "Delay between capture and send [s], [0, 5]")
-      ->check(finite_number(0.0, 5.0))->capture_default_str();
+      ->check(finite_number(0.0, 5.0))
+      ->capture_default_str();
   cmd->add_option("--dropout", o->dropout, "Probability of not sending a message, [0, 1]")
-      ->check(finite_number(0.0, 1.0))->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Seed for noise, dropout")->check(unsigned_integer())->capture_default_str();
+      ->check(finite_number(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed for noise, dropout")
+      ->check(unsigned_integer())
+      ->capture_default_str();
   cmd->add_option("--inject-bad", o->inject_bad,
                   "Replace every Nth message by a malformed, out-of-range or repeated one, in "
                   "turn (0 = never)")
-      ->check(unsigned_integer(1'000'000'000))->capture_default_str();
+      ->check(unsigned_integer(1'000'000'000))
+      ->capture_default_str();
   cmd->add_flag("--fast", o->fast, "Send as fast as possible (no pacing, no latency; for tests)");
   cmd->callback([o, angle_opt, speed_opt] {
     // Validate every number before touching the network or the simulator.

@@ -45,20 +45,26 @@ void add_view(CLI::App& app) {
     bool realtime = false, lockstep = false, echo = false;
   };
   auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("view", "Watch the arm live in a MuJoCo window (console commands on standard input)");
+  CLI::App* cmd = app.add_subcommand(
+      "view", "Watch the arm live in a MuJoCo window (console commands on standard input)");
   cmd->add_option("--config", a->config, "Module config YAML");
   cmd->add_option("--field", a->field, "Shipped field name or path (overrides the config)");
-  auto* rt = cmd->add_flag("--realtime", a->realtime, "Three threads paced at 500 Hz by the wall clock");
-  auto* ls = cmd->add_flag("--lockstep", a->lockstep, "One thread, paced to the wall clock (default; the console's bits)");
+  auto* rt =
+      cmd->add_flag("--realtime", a->realtime, "Three threads paced at 500 Hz by the wall clock");
+  auto* ls = cmd->add_flag("--lockstep", a->lockstep,
+                           "One thread, paced to the wall clock (default; the console's bits)");
   rt->excludes(ls);
   cmd->add_option("--script", a->script, "Read commands from this file instead of standard input");
   cmd->add_flag("--echo", a->echo, "Print every command before its answer");
   cmd->add_option("--camera", a->camera, "overview | side | top | follow")->capture_default_str();
   cmd->add_option("--size", a->size, "Window size WxH [pixels]")->capture_default_str();
-  cmd->add_option("--screenshot", a->screenshot, "Write the last frame here (PNG) when the session ends");
+  cmd->add_option("--screenshot", a->screenshot,
+                  "Write the last frame here (PNG) when the session ends");
   cmd->callback([a] {
     const control::ModuleConfig config = system::load_config(a->config, a->field);
-    { const system::System check(config); }  // the field and the models load (and fail) before the window
+    {
+      const system::System check(config);
+    }  // the field and the models load (and fail) before the window
     check_camera(a->camera);
     viz::ViewerOptions o;
     o.realtime = a->realtime;
@@ -81,7 +87,8 @@ void add_render(CLI::App& app) {
     bool no_video = false;
   };
   auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("render", "Render one hit off-screen: an MP4 and a filmstrip of its stages");
+  CLI::App* cmd = app.add_subcommand(
+      "render", "Render one hit off-screen: an MP4 and a filmstrip of its stages");
   cmd->add_option("--config", a->config, "Module config YAML");
   cmd->add_option("--field", a->field, "Shipped field name or path (overrides the config)");
   cmd->add_option("--hole", a->hole, "Hole centre X,Y [m] (default: the field's)");
@@ -92,7 +99,9 @@ void add_render(CLI::App& app) {
   cmd->add_option("--size", a->size, "Image size WxH [pixels], even")->capture_default_str();
   cmd->add_option("--fps", a->fps, "Video frames per simulated second")->capture_default_str();
   cmd->add_flag("--no-video", a->no_video, "The filmstrip only");
-  cmd->add_option("-o,--output", a->out, "Output stem: OUT.mp4 (or OUT-frames/) and OUT-filmstrip.png")->required();
+  cmd->add_option("-o,--output", a->out,
+                  "Output stem: OUT.mp4 (or OUT-frames/) and OUT-filmstrip.png")
+      ->required();
   cmd->callback([a] {
     const control::ModuleConfig config = system::load_config(a->config, a->field);
     check_camera(a->camera);
@@ -118,19 +127,24 @@ void add_render(CLI::App& app) {
     const system::System sys(config);  // the field and the models load (and fail) before drawing
     if (req.angle) sys.check_request(*req.angle, *req.speed, "render");
     if (req.hole) field::check_hole_position(sys.field(), *req.hole);
-    viz::GlWindow window(64, 64, false, "minigolf render");  // before the run: no display fails fast
+    viz::GlWindow window(64, 64, false,
+                         "minigolf render");  // before the run: no display fails fast
     const viz::HitRecording rec = viz::record_hit(config, req);
     const viz::RenderOutputs out = viz::render_hit(sys.arm_world(), rec, ro, stem);
     const auto& o = *rec.outcome;
-    fmt::print("hit: angle {:.4f} rad, speed {:.4f} m/s, hole ({:.3f}, {:.3f}): ball {} at ({:.3f}, {:.3f})\n",
-               rec.angle, rec.speed, rec.hole[0], rec.hole[1], o.sunk ? "holed" : sim::to_string(o.end),
-               o.rest_position[0], o.rest_position[1]);
+    fmt::print(
+        "hit: angle {:.4f} rad, speed {:.4f} m/s, hole ({:.3f}, {:.3f}): ball {} at ({:.3f}, "
+        "{:.3f})\n",
+        rec.angle, rec.speed, rec.hole[0], rec.hole[1], o.sunk ? "holed" : sim::to_string(o.end),
+        o.rest_position[0], o.rest_position[1]);
     std::string stages;
-    for (const auto& s : rec.stages) stages += fmt::format("{}{} {:.3f} s", stages.empty() ? "" : ", ", s.name, s.pose.time);
+    for (const auto& s : rec.stages)
+      stages += fmt::format("{}{} {:.3f} s", stages.empty() ? "" : ", ", s.name, s.pose.time);
     fmt::print("filmstrip: {} ({})\n", out.filmstrip.string(), stages);
     if (ro.video)
-      fmt::print("video: {} ({} frames, {}x{}, {:g} fps{})\n", out.video.string(), out.frames, ro.width,
-                 ro.height, ro.fps, out.used_ffmpeg ? "" : "; PNG frames: ffmpeg not found");
+      fmt::print("video: {} ({} frames, {}x{}, {:g} fps{})\n", out.video.string(), out.frames,
+                 ro.width, ro.height, ro.fps,
+                 out.used_ffmpeg ? "" : "; PNG frames: ffmpeg not found");
   });
 }
 

@@ -21,9 +21,9 @@ namespace mg::control {
 
 /// What the arm's driver measured at one core tick.
 struct MeasuredState {
-  double time = 0.0;                             ///< [s] sample time, the driver's monotonic clock
-  robot::Vector7 q = robot::Vector7::Zero();     ///< [rad] joint positions (encoders), J1..J7
-  robot::Vector7 qd = robot::Vector7::Zero();    ///< [rad/s] joint velocities, J1..J7
+  double time = 0.0;                           ///< [s] sample time, the driver's monotonic clock
+  robot::Vector7 q = robot::Vector7::Zero();   ///< [rad] joint positions (encoders), J1..J7
+  robot::Vector7 qd = robot::Vector7::Zero();  ///< [rad/s] joint velocities, J1..J7
   /// What perception sees, on robot-update ticks (every robot_update_divider-th): module_update
   /// then runs the robot update (robot_update: the perception and the DS) first. Empty on the
   /// other ticks, and for schedulers that call robot_update themselves (the lockstep runner, the

@@ -14,7 +14,9 @@ std::vector<std::string_view> split_words(std::string_view line) {
     while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
     if (i >= line.size() || line[i] == '#') break;
     const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r' && line[i] != '#') ++i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r' &&
+           line[i] != '#')
+      ++i;
     words.push_back(line.substr(start, i - start));
   }
   return words;
@@ -24,7 +26,8 @@ bool to_number(std::string_view word, double& out) {
   const char* first = word.data();
   if (!word.empty() && word.front() == '+') ++first;
   auto [ptr, ec] = std::from_chars(first, word.data() + word.size(), out);
-  return !word.empty() && ec == std::errc() && ptr == word.data() + word.size() && std::isfinite(out);
+  return !word.empty() && ec == std::errc() && ptr == word.data() + word.size() &&
+         std::isfinite(out);
 }
 
 ConsoleParse error(std::string message) { return {EmptyLine{}, std::move(message)}; }
@@ -65,8 +68,11 @@ ConsoleParse parse_console_line(std::string_view line) {
     return {HoleCmd{x, y}, {}};
   }
   if (verb == "load") {
-    if (!arity(2) || (w[1] != "hitting" && w[1] != "params")) return usage("load hitting|params FILE");
-    return {LoadCmd{w[1] == "hitting" ? LoadCmd::What::kHitting : LoadCmd::What::kParams, std::string(w[2])}, {}};
+    if (!arity(2) || (w[1] != "hitting" && w[1] != "params"))
+      return usage("load hitting|params FILE");
+    return {LoadCmd{w[1] == "hitting" ? LoadCmd::What::kHitting : LoadCmd::What::kParams,
+                    std::string(w[2])},
+            {}};
   }
   if (verb == "record") {
     if (arity(1) && w[1] == "off") return {RecordCmd{false, {}}, {}};

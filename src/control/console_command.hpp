@@ -12,10 +12,16 @@ namespace mg::control {
 struct IdleCmd {};
 struct RestCmd {};
 struct HitCmd {};
-struct AngleCmd { double radians; };
-struct SpeedCmd { double metres_per_second; };
+struct AngleCmd {
+  double radians;
+};
+struct SpeedCmd {
+  double metres_per_second;
+};
 struct AutoCmd {};
-struct HoleCmd { double x, y; };
+struct HoleCmd {
+  double x, y;
+};
 struct ResetCmd {};
 struct LoadCmd {
   enum class What { kHitting, kParams } what;
@@ -25,15 +31,17 @@ struct RecordCmd {
   bool on;
   std::string path;  ///< empty for `record off`
 };
-struct WaitCmd { double seconds; };
+struct WaitCmd {
+  double seconds;
+};
 struct StatusCmd {};
 struct HelpCmd {};
 struct QuitCmd {};
 struct EmptyLine {};
 
-using ConsoleCommand = std::variant<EmptyLine, IdleCmd, RestCmd, HitCmd, AngleCmd, SpeedCmd, AutoCmd,
-                                    HoleCmd, ResetCmd, LoadCmd, RecordCmd, WaitCmd, StatusCmd,
-                                    HelpCmd, QuitCmd>;
+using ConsoleCommand =
+    std::variant<EmptyLine, IdleCmd, RestCmd, HitCmd, AngleCmd, SpeedCmd, AutoCmd, HoleCmd,
+                 ResetCmd, LoadCmd, RecordCmd, WaitCmd, StatusCmd, HelpCmd, QuitCmd>;
 
 struct ConsoleParse {
   ConsoleCommand command;

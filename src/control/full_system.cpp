@@ -20,9 +20,10 @@ sim::World make_world_with_arm(field::Field field, const robot::WamMount& mount,
   options.extra_worldbody_mjcf = robot::wam_bodies_mjcf(mount);
   options.extra_actuator_mjcf = robot::wam_actuators_mjcf();
   // Only the club head touches anything (the ball); the rest of the arm is drawn only.
-  options.extra_bodies_off_static = {"wam_base", "wam_link1", "wam_link2", "wam_link3", "wam_link4",
-                                     "wam_link5", "wam_link6", "wam_link7", "wam_club"};
-  options.extra_bodies_off_ball = {"wam_base", "wam_link1", "wam_link2", "wam_link3",
+  options.extra_bodies_off_static = {"wam_base",  "wam_link1", "wam_link2",
+                                     "wam_link3", "wam_link4", "wam_link5",
+                                     "wam_link6", "wam_link7", "wam_club"};
+  options.extra_bodies_off_ball = {"wam_base",  "wam_link1", "wam_link2", "wam_link3",
                                    "wam_link4", "wam_link5", "wam_link6", "wam_link7"};
   return sim::World(std::move(field), options);
 }
@@ -35,7 +36,8 @@ ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
 
 LockstepRunner::LockstepRunner(const sim::World& world, const ModuleModel& model, mjData* d)
     : world_(&world), model_(&model), d_(d), data_(model), truth_(world, d), perception_(&truth_) {
-  steps_per_tick_ = static_cast<int>(std::lround(model.config().core_period() / world.model()->opt.timestep));
+  steps_per_tick_ =
+      static_cast<int>(std::lround(model.config().core_period() / world.model()->opt.timestep));
   steps_per_tick_ = std::max(steps_per_tick_, 1);
   durations_us_.reserve(1 << 16);
   module_reset(model, data_, d);
@@ -99,7 +101,8 @@ CoreTiming LockstepRunner::timing() const {
   if (durations_us_.empty()) return t;
   std::vector<float> s = durations_us_;
   std::sort(s.begin(), s.end());
-  const std::size_t i99 = std::min(s.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(s.size())));
+  const std::size_t i99 =
+      std::min(s.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(s.size())));
   t.core_update_p99_us = s[i99];
   t.core_update_max_us = s.back();
   double sum = 0.0;
@@ -123,12 +126,13 @@ void track_ratios(const ModuleModel& model, const mjData* d, const ModuleData& d
     const double lim = arm.torque_limit()[j];
     r.max_torque_ratio = std::max(r.max_torque_ratio, std::abs(d->ctrl[arm.actuator_id(j)]) / lim);
     r.max_raw_torque_ratio = std::max(r.max_raw_torque_ratio, std::abs(data.tau_raw[j]) / lim);
-    r.max_velocity_ratio = std::max(r.max_velocity_ratio, std::abs(qd[j]) / arm.velocity_limit()[j]);
-    r.max_command_velocity_ratio = std::max(r.max_command_velocity_ratio,
-                                            std::abs(data.qd_des[j]) / arm.velocity_limit()[j]);
-    r.min_position_margin = std::min(
-        r.min_position_margin,
-        std::min(q[j] - arm.position_lower()[j], arm.position_upper()[j] - q[j]));
+    r.max_velocity_ratio =
+        std::max(r.max_velocity_ratio, std::abs(qd[j]) / arm.velocity_limit()[j]);
+    r.max_command_velocity_ratio =
+        std::max(r.max_command_velocity_ratio, std::abs(data.qd_des[j]) / arm.velocity_limit()[j]);
+    r.min_position_margin =
+        std::min(r.min_position_margin,
+                 std::min(q[j] - arm.position_lower()[j], arm.position_upper()[j] - q[j]));
   }
   if (data.last.fault) r.faulted = true;
   bool touching = false;
@@ -149,8 +153,8 @@ class TorqueNoise {
       : arm_(&model.arm()),
         enabled_(options.torque_noise > 0.0),
         rng_(derive_seed(options.seed, 1)) {
-    steps_per_tick_ = std::max(
-        1, static_cast<int>(std::lround(model.config().core_period() / m->opt.timestep)));
+    steps_per_tick_ =
+        std::max(1, static_cast<int>(std::lround(model.config().core_period() / m->opt.timestep)));
     for (int j = 0; j < 7; ++j) std_[j] = options.torque_noise * arm_->torque_limit()[j];
   }
   /// Before physics step `step` of the runner: on a core tick, a fresh draw per joint replaces
@@ -185,7 +189,7 @@ std::array<double, 2> noisy_ball_start(const sim::World& world, const FullPuttOp
   return xy;
 }
 
-constexpr double kBallSettleTime = 0.3;  // [s] ball at rest in its contact (time constant 0.02 s)
+constexpr double kBallSettleTime = 0.3;    // [s] ball at rest in its contact (time constant 0.02 s)
 constexpr double kClubReachMargin = 0.05;  // [m] tracking error, idle drift
 constexpr double kHandoffHysteresis = 0.05;  // [m] hand-off this much beyond the fallback radius
 constexpr int kMaxHandoffFallbacks = 3;
@@ -195,8 +199,8 @@ bool same_ids(const sim::WorldIds& a, const sim::WorldIds& b) {
   return a.ball_body == b.ball_body && a.ball_geom == b.ball_geom && a.ball_qpos == b.ball_qpos &&
          a.ball_dof == b.ball_dof && a.ground_geom == b.ground_geom &&
          a.ground_mocap == b.ground_mocap && a.surface_geom == b.surface_geom &&
-         a.hole_mocap == b.hole_mocap && a.first_wall_mocap == b.first_wall_mocap && a.hole_floor_geom == b.hole_floor_geom &&
-         a.first_wall_geom == b.first_wall_geom;
+         a.hole_mocap == b.hole_mocap && a.first_wall_mocap == b.first_wall_mocap &&
+         a.hole_floor_geom == b.hole_floor_geom && a.first_wall_geom == b.first_wall_geom;
 }
 
 /// The ball world must be the arm world without the arm: same field and options, and the same
@@ -205,18 +209,18 @@ bool same_ids(const sim::WorldIds& a, const sim::WorldIds& b) {
 void check_ball_world(const sim::World& world, const sim::World& ball) {
   const auto& a = world.options();
   const auto& b = ball.options();
-  const bool ok = same_ids(world.ids(), ball.ids()) && world.field().name == ball.field().name &&
-                  a.ground == b.ground && a.timestep == b.timestep &&
-                  a.hole_segments == b.hole_segments && a.cup == b.cup &&
-                  a.resistance_smoothing == b.resistance_smoothing &&
-                  a.cup_restitution == b.cup_restitution &&
-                  a.rolling_slip_limit == b.rolling_slip_limit &&
-                  a.ground_time_constant == b.ground_time_constant &&
-                  b.extra_worldbody_mjcf.empty() && world.model()->nuserdata == ball.model()->nuserdata;
+  const bool ok =
+      same_ids(world.ids(), ball.ids()) && world.field().name == ball.field().name &&
+      a.ground == b.ground && a.timestep == b.timestep && a.hole_segments == b.hole_segments &&
+      a.cup == b.cup && a.resistance_smoothing == b.resistance_smoothing &&
+      a.cup_restitution == b.cup_restitution && a.rolling_slip_limit == b.rolling_slip_limit &&
+      a.ground_time_constant == b.ground_time_constant && b.extra_worldbody_mjcf.empty() &&
+      world.model()->nuserdata == ball.model()->nuserdata;
   if (!ok)
-    throw InputError(fmt::format("options.ball_world: expected a ball-only world of field '{}' with "
-                                 "the arm world's options (make_ball_world), got field '{}'",
-                                 world.field().name, ball.field().name));
+    throw InputError(
+        fmt::format("options.ball_world: expected a ball-only world of field '{}' with "
+                    "the arm world's options (make_ball_world), got field '{}'",
+                    world.field().name, ball.field().name));
 }
 
 }  // namespace
@@ -285,15 +289,31 @@ constexpr std::size_t kAtRestCacheSize = 4;
 // hit the cache.
 std::vector<double> approach_fingerprint(const ModuleModel& model) {
   const auto& c = model.config();
-  std::vector<double> f{static_cast<double>(c.mode), c.core_rate,
-                        static_cast<double>(c.robot_update_divider), c.integral_limit,
-                        static_cast<double>(c.fir_length), c.angle_min, c.angle_max,
-                        c.club_face_offset, c.rest_speed, c.rest_turn_rate, c.rest_tolerance,
-                        c.rest_heading_tolerance, c.stationary_threshold, c.brake_time,
-                        c.velocity_fault_factor, c.perception_max_age, c.ball_tolerance,
-                        model.rest_speed(), model.rest_turn_rate(), model.ik().damping,
-                        model.ik().position_gain, model.ik().orientation_gain,
-                        model.ik().posture_gain, model.ik().limit_margin, model.ik().dt,
+  std::vector<double> f{static_cast<double>(c.mode),
+                        c.core_rate,
+                        static_cast<double>(c.robot_update_divider),
+                        c.integral_limit,
+                        static_cast<double>(c.fir_length),
+                        c.angle_min,
+                        c.angle_max,
+                        c.club_face_offset,
+                        c.rest_speed,
+                        c.rest_turn_rate,
+                        c.rest_tolerance,
+                        c.rest_heading_tolerance,
+                        c.stationary_threshold,
+                        c.brake_time,
+                        c.velocity_fault_factor,
+                        c.perception_max_age,
+                        c.ball_tolerance,
+                        model.rest_speed(),
+                        model.rest_turn_rate(),
+                        model.ik().damping,
+                        model.ik().position_gain,
+                        model.ik().orientation_gain,
+                        model.ik().posture_gain,
+                        model.ik().limit_margin,
+                        model.ik().dt,
                         model.ik().velocity_scale};
   for (int j = 0; j < 7; ++j) {
     const auto i = static_cast<std::size_t>(j);
@@ -351,9 +371,8 @@ namespace {
 
 /// The ball at `start`, at rest in its ground contact: settled in `settle_world` (the ball world,
 /// else `world` with the arm held at the default posture, away from the ball).
-sim::BallState settled_ball(const sim::World& settle_world, mjData* sd,
-                            const robot::ArmModel* arm, std::array<double, 2> start,
-                            std::array<double, 2> hole) {
+sim::BallState settled_ball(const sim::World& settle_world, mjData* sd, const robot::ArmModel* arm,
+                            std::array<double, 2> start, std::array<double, 2> hole) {
   settle_world.reset(sd);
   settle_world.set_hole(sd, hole);
   settle_world.place_ball(sd, start);
@@ -458,10 +477,12 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   r.min_position_margin = 1e9;
   LockstepRunner run(world, model, d);
   // The plant's vision: late and off by this putt's error.
-  const bool plant_vision = options.perception_latency > 0.0 || options.perceived_ball_offset[0] != 0.0 ||
+  const bool plant_vision = options.perception_latency > 0.0 ||
+                            options.perceived_ball_offset[0] != 0.0 ||
                             options.perceived_ball_offset[1] != 0.0;
   perception::SimulatorPerception truth(world, d);
-  perception::DelayedPerception delayed(truth, options.perception_latency, options.perceived_ball_offset);
+  perception::DelayedPerception delayed(truth, options.perception_latency,
+                                        options.perceived_ball_offset);
   if (plant_vision) run.set_perception(&delayed);
   TorqueNoise torque_noise(model, world.model(), options);
   double t_module_hit = -1.0;  // [s] state the module measured when it saw the hit (-1: not yet)
@@ -558,9 +579,10 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   }
 
   // Hit (the arm of a plant reaches club_speed_scale of what it is asked for).
-  const double arm_speed = options.club_speed_scale == 1.0
-                               ? speed
-                               : std::clamp(speed * options.club_speed_scale, cfg.speed_min, cfg.speed_max);
+  const double arm_speed =
+      options.club_speed_scale == 1.0
+          ? speed
+          : std::clamp(speed * options.club_speed_scale, cfg.speed_min, cfg.speed_max);
   const bool request_valid = request_hit(model, run.module(), angle, arm_speed);
   const long hit_steps = std::lround(options.hit_timeout / dt);
   double t_request = d->time;
@@ -583,8 +605,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
       // Execution noise only: the torque disturbance makes the arm jitter around the
       // stationarity threshold, so a valid request can be refused as "not at rest" at the next
       // tick. Wait for the rest pose again and repeat the request, until settle_timeout.
-      if (options.torque_noise > 0.0 && request_valid &&
-          run.module().state == ModuleState::kRest) {
+      if (options.torque_noise > 0.0 && request_valid && run.module().state == ModuleState::kRest) {
         bool again = false;
         while (!again && d->time < options.settle_timeout) {
           step();
@@ -630,7 +651,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   const double ball_radius = world.field().ball.radius;
   const double club_radius = world.model()->geom_rbound[model.club_geom()];
   bool may_hand_off = ball_world != nullptr;
-  double came_back_at = -1.0;  // [s] time of the last fallback: no new hand-off until past it
+  double came_back_at = -1.0;   // [s] time of the last fallback: no new hand-off until past it
   const mjData* ball_data = d;  // where the ball's final state is
   const long record_every =
       options.record_interval > 0.0 ? std::max(1L, std::lround(options.record_interval / dt)) : 0;

@@ -112,10 +112,10 @@ struct FullPuttOptions {
   /// club is clear of the ball ("hand-off", see full_system_putt); nullptr: the arm is simulated
   /// to the end.
   const sim::World* ball_world = nullptr;
-  double settle_timeout = 6.0;    ///< [s] to reach the rest pose
-  double hit_timeout = 3.0;       ///< [s] from the hit request to contact
-  double max_duration = 30.0;     ///< [s] ball roll after the hit
-  double launch_delay = 0.02;     ///< [s] after the first contact, when the launch is measured
+  double settle_timeout = 6.0;  ///< [s] to reach the rest pose
+  double hit_timeout = 3.0;     ///< [s] from the hit request to contact
+  double max_duration = 30.0;   ///< [s] ball roll after the hit
+  double launch_delay = 0.02;   ///< [s] after the first contact, when the launch is measured
   /// [s] spacing of the ball trajectory samples in the outcome (from the first contact, time
   /// counted from it; the arm and the ball-only parts alike); 0: no trajectory.
   double record_interval = 0.0;
@@ -156,21 +156,22 @@ struct AngleSpeed {
 };
 
 struct FullPuttResult {
-  bool hit = false;                 ///< the club struck the ball
+  bool hit = false;                            ///< the club struck the ball
   std::array<double, 2> ball_start{0.0, 0.0};  ///< [m] where the ball was placed (tee + noise)
-  bool hit_refused = false;         ///< the module refused the request (envelope, NaN)
-  sim::PuttOutcome outcome;  ///< the ball's outcome; duration [s] and steps count from first contact
-  AngleSpeed club;  ///< club face velocity just before first contact (speed: 3-D norm)
-  AngleSpeed launch;                ///< ball velocity launch_delay after contact (horizontal)
+  bool hit_refused = false;                    ///< the module refused the request (envelope, NaN)
+  sim::PuttOutcome
+      outcome;        ///< the ball's outcome; duration [s] and steps count from first contact
+  AngleSpeed club;    ///< club face velocity just before first contact (speed: 3-D norm)
+  AngleSpeed launch;  ///< ball velocity launch_delay after contact (horizontal)
   CoreTiming timing;
-  double max_torque_ratio = 0.0;    ///< max |tau_j| / limit_j of the applied torques
-  double max_raw_torque_ratio = 0.0;  ///< the same before the clamp
-  double max_velocity_ratio = 0.0;  ///< max |qd_j| / limit_j measured
+  double max_torque_ratio = 0.0;            ///< max |tau_j| / limit_j of the applied torques
+  double max_raw_torque_ratio = 0.0;        ///< the same before the clamp
+  double max_velocity_ratio = 0.0;          ///< max |qd_j| / limit_j measured
   double max_command_velocity_ratio = 0.0;  ///< max |qd_des_j| / limit_j commanded by the module
-  double min_position_margin = 0.0;  ///< [rad] min distance of a joint to its range ends
+  double min_position_margin = 0.0;         ///< [rad] min distance of a joint to its range ends
   double rest_time = 0.0;  ///< [s] simulated time to reach the rest pose (kAtRestPose: the settle)
-  double hit_time = 0.0;            ///< [s] from the hit request to contact
-  bool faulted = false;             ///< a fault was observed during the run
+  double hit_time = 0.0;   ///< [s] from the hit request to contact
+  bool faulted = false;    ///< a fault was observed during the run
   /// Separate club-ball contacts over the run (1: the ball was touched once, as it should be).
   int club_ball_touches = 0;
   bool touching_ball = false;  ///< (bookkeeping of the count: in contact at the last step)

@@ -66,7 +66,8 @@ double sphere_radius(const mjModel* m, int geom) {
 
 ModuleModel::ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::HittingModel hitting,
                          const ModuleConfig& config, int ball_geom, int ball_dof)
-    : ModuleModel(robot::ArmModel(m, mount), std::move(hitting), config, sphere_radius(m, ball_geom)) {
+    : ModuleModel(robot::ArmModel(m, mount), std::move(hitting), config,
+                  sphere_radius(m, ball_geom)) {
   club_geom_ = mj_name2id(m, mjOBJ_GEOM, "club_head");
   if (club_geom_ < 0) throw InputError("module: the model has no geom 'club_head'");
   if (ball_dof < 0 || ball_dof + 6 > m->nv)
@@ -78,7 +79,8 @@ ModuleModel::ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::Hit
 double ModuleModel::club_speed_cap(double angle) const {
   if (!(angle < 0.0)) return dynamic_cap_;
   const double u = std::min(1.0, -angle / config_.negative_cap_angle);
-  const double cap = config_.arm_speed_cap + u * (config_.arm_speed_cap_negative - config_.arm_speed_cap);
+  const double cap =
+      config_.arm_speed_cap + u * (config_.arm_speed_cap_negative - config_.arm_speed_cap);
   return std::min(dynamic_cap_, cap);
 }
 
@@ -175,8 +177,7 @@ Eigen::Vector3d rest_face_position(const ModuleModel& model, double angle) {
   const auto& c = model.config();
   const Eigen::Vector3d offset(c.rest_offset[0], c.rest_offset[1], c.rest_offset[2]);
   const Eigen::Vector3d psi = direction_of(angle);
-  return model.hitting().x_star() + ds::rotation_about_z(angle) * offset -
-         c.club_face_offset * psi;
+  return model.hitting().x_star() + ds::rotation_about_z(angle) * offset - c.club_face_offset * psi;
 }
 
 bool request_rest(const ModuleModel& model, ModuleData& data, double angle) {
@@ -200,7 +201,8 @@ bool request_hit(const ModuleModel& model, ModuleData& data, double angle, doubl
   // velocity with the original speed profile struck the ball off-centre).
   cmd.speed = std::min(speed, model.club_speed_cap(angle));
   cmd.modulator = ds::Modulator::kSine;
-  cmd.start = rest_face_position(model, angle) + model.config().club_face_offset * direction_of(angle);
+  cmd.start =
+      rest_face_position(model, angle) + model.config().club_face_offset * direction_of(angle);
   try {
     data.ds.set_command(model.hitting(), cmd);
   } catch (const Error&) {
@@ -216,11 +218,13 @@ void request_idle(ModuleData& data) { data.pending = Command::kIdle; }
 namespace {
 
 /// Takes a perception sample: the module acts on the latest one.
-void take_perception(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen) {
+void take_perception(const ModuleModel& model, ModuleData& data,
+                     const perception::Perceived& seen) {
   data.seen = seen;
   // Age counts from the observation, not from this update.
   if (seen.fresh)
-    data.seen_tick = data.tick - std::llround(std::max(0.0, seen.age) / model.config().core_period());
+    data.seen_tick =
+        data.tick - std::llround(std::max(0.0, seen.age) / model.config().core_period());
 }
 
 }  // namespace
@@ -241,7 +245,8 @@ bool club_reaches_ball(const ModuleModel& model, const Eigen::Isometry3d& face,
   return dx * dx + dy * dy + dz * dz < radius * radius;
 }
 
-void robot_update(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen) noexcept {
+void robot_update(const ModuleModel& model, ModuleData& data,
+                  const perception::Perceived& seen) noexcept {
   take_perception(model, data, seen);
   if (data.state != ModuleState::kHitting) return;
   const auto& h = model.hitting();
@@ -287,8 +292,8 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
   obs.request_valid = data.request_valid;
   obs.perception_fresh = perception_fresh(model, data);
   obs.ball_in_place = ball_in_place(model, data);
-  bool fault = data.compute_fault || data.overrun_fault || !finite(q) || !finite(qd) ||
-               !finite(data.q_ref);
+  bool fault =
+      data.compute_fault || data.overrun_fault || !finite(q) || !finite(qd) || !finite(data.q_ref);
   if (!fault) {
     for (int j = 0; j < 7; ++j) {
       if (q[j] < arm.position_lower()[j] - 0.02 || q[j] > arm.position_upper()[j] + 0.02 ||
@@ -302,10 +307,10 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
   obs.fault = fault;
   double qd_max = 0.0;
   for (int j = 0; j < 7; ++j) qd_max = std::max(qd_max, std::abs(qd[j]));
-  obs.joints_stationary = finite(qd) && qd_max < c.stationary_threshold &&
-                          data.time_in_state >= c.brake_time;
-  obs.at_rest_pose = data.state == ModuleState::kRest && data.at_rest_pose &&
-                     qd_max < c.stationary_threshold;
+  obs.joints_stationary =
+      finite(qd) && qd_max < c.stationary_threshold && data.time_in_state >= c.brake_time;
+  obs.at_rest_pose =
+      data.state == ModuleState::kRest && data.at_rest_pose && qd_max < c.stationary_threshold;
   if (data.state == ModuleState::kHitting) {
     // Hit detection from what a real system measures: the club head by FK of the measured
     // joints against the perceived ball, and the perceived ball's motion since the hit began.
@@ -365,8 +370,7 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
       const double heading = std::atan2(face.linear()(1, 0), face.linear()(0, 0));
       data.at_rest_pose = (face.translation() - goal).norm() < c.rest_tolerance &&
                           std::abs(wrap_angle(heading - data.angle)) < c.rest_heading_tolerance &&
-                          (data.setpoint - goal).norm() < kEps &&
-                          qd_max < c.stationary_threshold;
+                          (data.setpoint - goal).norm() < kEps && qd_max < c.stationary_threshold;
     } else if (data.state == ModuleState::kHitting) {
       // The DS is evaluated at the reference face (FK of q_ref), not at an integrated point: when
       // a joint saturates, the club just gets there later instead of a set-point running away.
@@ -377,7 +381,8 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
       // reference: when a joint saturates the club gets there later instead of the set-point
       // running away.
       const Eigen::Vector3d lead = data.p_ref - p_kin;
-      if (lead.norm() > c.reference_leash) data.p_ref = p_kin + lead * (c.reference_leash / lead.norm());
+      if (lead.norm() > c.reference_leash)
+        data.p_ref = p_kin + lead * (c.reference_leash / lead.norm());
       // Smoothstep ramp-in: the DS asks for full speed at once, the arm starts from rest.
       const double u = std::min(1.0, data.time_in_state / c.hit_ramp_time);
       const Eigen::Vector3d v_ref = data.v_ds * (u * u * (3.0 - 2.0 * u));
@@ -391,7 +396,8 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
       const double s = std::max(0.0, 1.0 - t / c.brake_time);
       Eigen::Vector3d v = data.v_brake0 * s;
       if (t < c.brake_time)
-        v.z() += c.brake_lift_height * (M_PI / (2.0 * c.brake_time)) * std::sin(M_PI * t / c.brake_time);
+        v.z() +=
+            c.brake_lift_height * (M_PI / (2.0 * c.brake_time)) * std::sin(M_PI * t / c.brake_time);
       data.setpoint += v * dt;
       target.position = data.setpoint;
       target.heading = data.setpoint_heading;
@@ -413,7 +419,8 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
     Vector7 a = data.qdd_des;
     for (int j = 0; j < 7; ++j) {
       const auto i = static_cast<std::size_t>(j);
-      data.integral[j] = std::clamp(data.integral[j] + e[j] * dt, -c.integral_limit, c.integral_limit);
+      data.integral[j] =
+          std::clamp(data.integral[j] + e[j] * dt, -c.integral_limit, c.integral_limit);
       a[j] += c.kp[i] * e[j] + c.ki[i] * data.integral[j] + c.kd[i] * (data.qd_des[j] - qd[j]);
     }
     if (robot::inverse_dynamics(arm, q, qd, a, tau) != robot::RtStatus::kOk) {
@@ -444,7 +451,8 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
   return command;
 }
 
-ModuleCommand control_tick(const ModuleModel& model, ModuleData& data, ArmBackend& backend) noexcept {
+ModuleCommand control_tick(const ModuleModel& model, ModuleData& data,
+                           ArmBackend& backend) noexcept {
   const ModuleCommand command = module_update(model, data, backend.read());
   backend.write(command);
   return command;

@@ -125,29 +125,29 @@ class ModuleData {
   double speed = 0.0;  ///< [m/s] commanded club speed at the ball
   ds::HittingDsData ds;
 
-  std::int64_t tick = 0;          ///< core ticks since reset
-  double time_in_state = 0.0;     ///< [s]
-  robot::Vector7 q_ref = robot::Vector7::Zero();        ///< [rad] reference joint positions (7)
-  robot::Vector7 qd_des = robot::Vector7::Zero();       ///< [rad/s] filtered desired velocities
-  robot::Vector7 qdd_des = robot::Vector7::Zero();      ///< [rad/s^2]
-  robot::Vector7 integral = robot::Vector7::Zero();     ///< [rad s] PID integral
-  robot::Vector7 tau = robot::Vector7::Zero();          ///< [N m] last command (after the clamp)
-  robot::Vector7 tau_raw = robot::Vector7::Zero();      ///< [N m] before the clamp
+  std::int64_t tick = 0;                             ///< core ticks since reset
+  double time_in_state = 0.0;                        ///< [s]
+  robot::Vector7 q_ref = robot::Vector7::Zero();     ///< [rad] reference joint positions (7)
+  robot::Vector7 qd_des = robot::Vector7::Zero();    ///< [rad/s] filtered desired velocities
+  robot::Vector7 qdd_des = robot::Vector7::Zero();   ///< [rad/s^2]
+  robot::Vector7 integral = robot::Vector7::Zero();  ///< [rad s] PID integral
+  robot::Vector7 tau = robot::Vector7::Zero();       ///< [N m] last command (after the clamp)
+  robot::Vector7 tau_raw = robot::Vector7::Zero();   ///< [N m] before the clamp
   FirFilter fir;
 
   Eigen::Vector3d setpoint = Eigen::Vector3d::Zero();  ///< [m, world] face set-point (Rest/Braking)
   double setpoint_heading = 0.0;                       ///< [rad]
   Eigen::Vector3d p_ref = Eigen::Vector3d::Zero();     ///< [m, world] DS point reference (Hitting)
-  Eigen::Vector3d v_ds = Eigen::Vector3d::Zero();      ///< [m/s, world] last robot-update DS velocity
-  Eigen::Vector3d v_ref = Eigen::Vector3d::Zero();     ///< [m/s, world] ramped DS velocity (Hitting)
+  Eigen::Vector3d v_ds = Eigen::Vector3d::Zero();   ///< [m/s, world] last robot-update DS velocity
+  Eigen::Vector3d v_ref = Eigen::Vector3d::Zero();  ///< [m/s, world] ramped DS velocity (Hitting)
   Eigen::Vector3d v_brake0 = Eigen::Vector3d::Zero();  ///< [m/s] face reference velocity at braking
   bool at_rest_pose = false;
-  bool ball_hit = false;       ///< latched during a hit
+  bool ball_hit = false;                          ///< latched during a hit
   HitEvidence hit_evidence = HitEvidence::kNone;  ///< what showed it
   /// [m, world] the perceived ball when the hit began (ball motion is measured from there).
   std::array<double, 3> ball_at_hit_start{0, 0, 0};
   std::int64_t hit_start_tick = 0;  ///< core tick the hit began
-  bool compute_fault = false;  ///< IK/RNEA failed last tick: reported as a fault this tick
+  bool compute_fault = false;       ///< IK/RNEA failed last tick: reported as a fault this tick
   /// Set by a real-time scheduler after an overrun streak; a fault until the module is reset.
   bool overrun_fault = false;
   perception::Perceived seen;   ///< last perception handed to the robot update
@@ -178,11 +178,13 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
 
 /// One core tick on an arm: backend.read() -> module_update -> backend.write(). Real-time safe
 /// when the backend is.
-ModuleCommand control_tick(const ModuleModel& model, ModuleData& data, ArmBackend& backend) noexcept;
+ModuleCommand control_tick(const ModuleModel& model, ModuleData& data,
+                           ArmBackend& backend) noexcept;
 
 /// The robot update (every robot_update_divider-th core tick, called by the scheduler): takes the
 /// perceived ball and hole and, while hitting, evaluates the DS velocity at p_ref. Real-time safe.
-void robot_update(const ModuleModel& model, ModuleData& data, const perception::Perceived& seen) noexcept;
+void robot_update(const ModuleModel& model, ModuleData& data,
+                  const perception::Perceived& seen) noexcept;
 
 /// True if the club head (its box, at face pose `face` [world]: x the face normal, y heel, z up)
 /// touches or has passed through a ball of the model's radius centred at `ball` [m, world].

@@ -17,11 +17,11 @@ ModuleMode parse_module_mode(const std::string& name);  ///< "simulator" | "norm
 std::string to_string(ModuleMode mode);
 
 struct ModuleConfig {
-  std::string field = "flat";                                  ///< shipped field name or path
+  std::string field = "flat";                                      ///< shipped field name or path
   std::string hitting_model = "data/models/hitting-default.json";  ///< hitting DS model file
   ModuleMode mode = ModuleMode::kSimulator;
 
-  double core_rate = 500.0;   ///< [Hz] core update rate (physics runs at 1 kHz: 2 steps per tick)
+  double core_rate = 500.0;  ///< [Hz] core update rate (physics runs at 1 kHz: 2 steps per tick)
   int robot_update_divider = 5;  ///< robot update (DS evaluation) every this many core ticks
 
   /// Computed-torque PID gains per joint, in acceleration units (they are multiplied by M(q)
@@ -56,13 +56,13 @@ struct ModuleConfig {
   /// [m] p = face centre + offset psi: at impact the face (a plane through the face centre) meets
   /// the ball's back when p reaches the ball centre x*, so the offset is the ball radius.
   double club_face_offset = 0.021335;
-  double rest_speed = 0.25;       ///< [m/s] speed of the moving rest set-point
-  double rest_turn_rate = 0.8;    ///< [rad/s] heading rate of the rest set-point
-  double rest_tolerance = 0.003;  ///< [m] face within this of the rest pose counts as there
+  double rest_speed = 0.25;              ///< [m/s] speed of the moving rest set-point
+  double rest_turn_rate = 0.8;           ///< [rad/s] heading rate of the rest set-point
+  double rest_tolerance = 0.003;         ///< [m] face within this of the rest pose counts as there
   double rest_heading_tolerance = 0.01;  ///< [rad]
 
-  double brake_lift_height = 0.04;  ///< [m] club lifted this much while braking
-  double brake_time = 0.15;         ///< [s] velocity target ramps to zero over this time
+  double brake_lift_height = 0.04;     ///< [m] club lifted this much while braking
+  double brake_time = 0.15;            ///< [s] velocity target ramps to zero over this time
   double stationary_threshold = 0.05;  ///< [rad/s] every joint slower: stationary
   /// [m/s] the putt harness (full_system_putt) counts the simulated ball faster than this as hit
   /// (with the simulator's contact); the module itself detects the hit from measurements only.
@@ -70,11 +70,11 @@ struct ModuleConfig {
   /// [m] the module counts the ball as hit once the perceived ball has moved this far
   /// (horizontally) from where it was seen when the hit began: 10x the vision noise.
   double ball_moved_distance = 0.01;
-  double passed_distance = 0.06;    ///< [m] DS point this far past x* without contact: passed
+  double passed_distance = 0.06;  ///< [m] DS point this far past x* without contact: passed
   /// [m] the integrated DS reference may lead the kinematic reference by at most this much.
   double reference_leash = 0.005;
-  double hit_ramp_time = 0.2;       ///< [s] DS velocity ramped in (smoothstep) from the rest pose
-  double max_hit_duration = 3.0;    ///< [s] a hit longer than this is a fault
+  double hit_ramp_time = 0.2;     ///< [s] DS velocity ramped in (smoothstep) from the rest pose
+  double max_hit_duration = 3.0;  ///< [s] a hit longer than this is a fault
 
   /// Faults: measured joint speed above this fraction of its limit, or a joint outside its range.
   double velocity_fault_factor = 1.5;

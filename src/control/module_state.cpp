@@ -50,30 +50,48 @@ Transition next_state(ModuleState state, const Observation& o) {
 
 std::string_view to_string(ModuleState state) {
   switch (state) {
-    case ModuleState::kIdle: return "Idle";
-    case ModuleState::kRest: return "Rest";
-    case ModuleState::kHitting: return "Hitting";
-    case ModuleState::kBraking: return "Braking";
+    case ModuleState::kIdle:
+      return "Idle";
+    case ModuleState::kRest:
+      return "Rest";
+    case ModuleState::kHitting:
+      return "Hitting";
+    case ModuleState::kBraking:
+      return "Braking";
   }
   return "?";
 }
 
 std::string_view to_string(Reason reason) {
   switch (reason) {
-    case Reason::kNoChange: return "no change";
-    case Reason::kUserIdle: return "user asked for idle";
-    case Reason::kUserRest: return "user asked for the rest pose";
-    case Reason::kUserHit: return "user asked for a hit";
-    case Reason::kBallHit: return "the ball was hit";
-    case Reason::kPassedBall: return "the club passed the hitting point without touching the ball";
-    case Reason::kStationary: return "all joints stationary";
-    case Reason::kFault: return "fault";
-    case Reason::kHitRefusedNotAtRest: return "hit refused: not at the rest pose";
-    case Reason::kHitRefusedStalePerception: return "hit refused: no fresh perception of ball and hole";
-    case Reason::kHitRefusedBallNotInPlace: return "hit refused: the ball is not at the hitting point";
-    case Reason::kHitRefusedInvalidRequest: return "hit refused: no hitting model or angle/speed outside the safe envelope";
-    case Reason::kHitRefusedWhileMoving: return "hit refused: a hit is already running";
-    case Reason::kRestRefusedWhileHitting: return "rest refused: wait until braking ends";
+    case Reason::kNoChange:
+      return "no change";
+    case Reason::kUserIdle:
+      return "user asked for idle";
+    case Reason::kUserRest:
+      return "user asked for the rest pose";
+    case Reason::kUserHit:
+      return "user asked for a hit";
+    case Reason::kBallHit:
+      return "the ball was hit";
+    case Reason::kPassedBall:
+      return "the club passed the hitting point without touching the ball";
+    case Reason::kStationary:
+      return "all joints stationary";
+    case Reason::kFault:
+      return "fault";
+    case Reason::kHitRefusedNotAtRest:
+      return "hit refused: not at the rest pose";
+    case Reason::kHitRefusedStalePerception:
+      return "hit refused: no fresh perception of ball and hole";
+    case Reason::kHitRefusedBallNotInPlace:
+      return "hit refused: the ball is not at the hitting point";
+    case Reason::kHitRefusedInvalidRequest:
+      return "hit refused: no hitting model or angle/speed outside the safe envelope";
+    case Reason::kHitRefusedWhileMoving:
+      return "hit refused: a hit is already running";
+    case Reason::kRestRefusedWhileHitting:
+      return "rest refused: wait until braking ends";
   }
   return "?";
 }

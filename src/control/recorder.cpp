@@ -45,8 +45,9 @@ std::string format_recording(const std::vector<RecordSample>& rows) {
   std::string out = "t,state";
   for (const char* g : {"q", "qd", "tau"})
     for (int j = 1; j <= 7; ++j) out += fmt::format(",{}{}", g, j);
-  out += ",face_x,face_y,face_z,ball_x,ball_y,ball_z,seen_ball_x,seen_ball_y,seen_ball_z,"
-         "seen_hole_x,seen_hole_y,fresh,angle,speed\n";
+  out +=
+      ",face_x,face_y,face_z,ball_x,ball_y,ball_z,seen_ball_x,seen_ball_y,seen_ball_z,"
+      "seen_hole_x,seen_hole_y,fresh,angle,speed\n";
   auto append = [&out](double v) { fmt::format_to(std::back_inserter(out), ",{}", v); };
   for (const RecordSample& s : rows) {
     fmt::format_to(std::back_inserter(out), "{},{}", s.t, s.state);

@@ -3,10 +3,10 @@
 /// reserved when recording starts, so `record` (called from the robot update) never allocates;
 /// `stop` writes the whole CSV atomically, so a recording is either complete on disk or absent.
 ///
-/// CSV columns (all numeric): t [s], state (0 Idle, 1 Rest, 2 Hitting, 3 Braking), q1..q7 [rad], qd1..qd7 [rad/s], tau1..tau7 [N m], face_x/y/z [m]
-/// (club face centre, FK of the measured joints), ball_x/y/z [m] (simulated truth),
-/// seen_ball_x/y/z, seen_hole_x/y [m] (the module's perception), fresh (0/1), angle [rad],
-/// speed [m/s] (the console's current request).
+/// CSV columns (all numeric): t [s], state (0 Idle, 1 Rest, 2 Hitting, 3 Braking), q1..q7 [rad],
+/// qd1..qd7 [rad/s], tau1..tau7 [N m], face_x/y/z [m] (club face centre, FK of the measured
+/// joints), ball_x/y/z [m] (simulated truth), seen_ball_x/y/z, seen_hole_x/y [m] (the module's
+/// perception), fresh (0/1), angle [rad], speed [m/s] (the console's current request).
 #include <array>
 #include <cstddef>
 #include <filesystem>

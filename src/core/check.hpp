@@ -11,7 +11,8 @@ namespace mg {
 
 /// Throws unless `value` is finite.
 inline void require_finite(std::string_view name, double value) {
-  if (!std::isfinite(value)) throw InputError(fmt::format("{}: expected a finite number, got {}", name, value));
+  if (!std::isfinite(value))
+    throw InputError(fmt::format("{}: expected a finite number, got {}", name, value));
 }
 
 /// Throws unless `lo <= value <= hi` (and finite).
@@ -24,13 +25,15 @@ inline void require_in_range(std::string_view name, double value, double lo, dou
 /// Throws unless `value > 0` (and finite).
 inline void require_positive(std::string_view name, double value) {
   require_finite(name, value);
-  if (!(value > 0.0)) throw InputError(fmt::format("{}: expected a positive number, got {}", name, value));
+  if (!(value > 0.0))
+    throw InputError(fmt::format("{}: expected a positive number, got {}", name, value));
 }
 
 /// Throws unless `value >= 0` (and finite).
 inline void require_non_negative(std::string_view name, double value) {
   require_finite(name, value);
-  if (value < 0.0) throw InputError(fmt::format("{}: expected a non-negative number, got {}", name, value));
+  if (value < 0.0)
+    throw InputError(fmt::format("{}: expected a non-negative number, got {}", name, value));
 }
 
 }  // namespace mg

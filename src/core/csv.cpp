@@ -13,8 +13,10 @@ namespace mg {
 namespace {
 
 std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -23,7 +25,8 @@ std::vector<std::string_view> split_cells(std::string_view line) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    cells.push_back(trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
+    cells.push_back(
+        trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
   }
@@ -35,8 +38,8 @@ std::vector<std::string_view> split_cells(std::string_view line) {
 std::size_t CsvTable::column_index(std::string_view name) const {
   const auto it = std::find(header.begin(), header.end(), name);
   if (it == header.end())
-    throw InputError(fmt::format("{}: missing column '{}' (columns: {})", source, name,
-                                 fmt::join(header, ",")));
+    throw InputError(
+        fmt::format("{}: missing column '{}' (columns: {})", source, name, fmt::join(header, ",")));
   return static_cast<std::size_t>(it - header.begin());
 }
 
@@ -67,7 +70,8 @@ CsvTable parse_csv(std::string_view text, std::string_view source) {
     auto cells = split_cells(line);
     if (!have_header) {
       for (auto c : cells) {
-        if (c.empty()) throw InputError(fmt::format("{}:{}: empty column name in header", source, line_no));
+        if (c.empty())
+          throw InputError(fmt::format("{}:{}: empty column name in header", source, line_no));
         if (std::find(table.header.begin(), table.header.end(), c) != table.header.end())
           throw InputError(fmt::format("{}:{}: duplicate column '{}'", source, line_no, c));
         table.header.emplace_back(c);

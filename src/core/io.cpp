@@ -3,18 +3,18 @@
 #include <atomic>
 #include <charconv>
 #include <csignal>
-#include <cstring>
-#include <mutex>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 #include <system_error>
 
-#include <climits>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <climits>
 
 #include <fmt/format.h>
 #include <pthread.h>
@@ -28,13 +28,19 @@ namespace {
 std::string file_kind(std::filesystem::file_type t) {
   using std::filesystem::file_type;
   switch (t) {
-    case file_type::directory: return "a directory";
-    case file_type::symlink: return "a symbolic link";
-    case file_type::fifo: return "a FIFO";
-    case file_type::socket: return "a socket";
+    case file_type::directory:
+      return "a directory";
+    case file_type::symlink:
+      return "a symbolic link";
+    case file_type::fifo:
+      return "a FIFO";
+    case file_type::socket:
+      return "a socket";
     case file_type::block:
-    case file_type::character: return "a device";
-    default: return "not a regular file";
+    case file_type::character:
+      return "a device";
+    default:
+      return "not a regular file";
   }
 }
 
@@ -61,17 +67,20 @@ bool is_dev_null(const struct stat& st) {
   return S_ISCHR(st.st_mode) && ::stat("/dev/null", &null) == 0 && st.st_rdev == null.st_rdev;
 }
 
-std::uintmax_t check_input_stat(const std::filesystem::path& path, const struct stat& st, std::uintmax_t max_bytes) {
-  if (S_ISDIR(st.st_mode)) throw IoError(fmt::format("{}: is a directory, expected a file", shown_path(path)));
+std::uintmax_t check_input_stat(const std::filesystem::path& path, const struct stat& st,
+                                std::uintmax_t max_bytes) {
+  if (S_ISDIR(st.st_mode))
+    throw IoError(fmt::format("{}: is a directory, expected a file", shown_path(path)));
   if (is_dev_null(st)) return 0;
   if (!S_ISREG(st.st_mode)) {
     const auto type = std::filesystem::status(path).type();
-    throw IoError(fmt::format("{}: is {}; input files must be regular files", shown_path(path), file_kind(type)));
+    throw IoError(fmt::format("{}: is {}; input files must be regular files", shown_path(path),
+                              file_kind(type)));
   }
   const auto size = static_cast<std::uintmax_t>(st.st_size);
   if (size > max_bytes)
-    throw IoError(fmt::format("{}: is {} bytes; input files are limited to {} MiB", shown_path(path), size,
-                              max_bytes >> 20));
+    throw IoError(fmt::format("{}: is {} bytes; input files are limited to {} MiB",
+                              shown_path(path), size, max_bytes >> 20));
   return size;
 }
 
@@ -79,7 +88,8 @@ std::uintmax_t check_input_stat(const std::filesystem::path& path, const struct 
 
 std::uintmax_t check_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
+  if (::stat(path.c_str(), &st) != 0)
+    throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
   return check_input_stat(path, st, max_bytes);
 }
 
@@ -92,7 +102,8 @@ std::string read_text_file(const std::filesystem::path& path, std::uintmax_t max
     ~Closer() { ::close(fd); }
   } closer{fd};
   struct stat st {};
-  if (::fstat(fd, &st) != 0) throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
+  if (::fstat(fd, &st) != 0)
+    throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
   const std::uintmax_t size = check_input_stat(path, st, max_bytes);
   std::string text;
   text.reserve(static_cast<std::size_t>(size));
@@ -100,22 +111,26 @@ std::string read_text_file(const std::filesystem::path& path, std::uintmax_t max
   for (;;) {
     const ssize_t n = ::read(fd, buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw IoError(fmt::format("{}: read failed: {}", shown_path(path), std::strerror(errno)));
+    if (n < 0)
+      throw IoError(fmt::format("{}: read failed: {}", shown_path(path), std::strerror(errno)));
     if (n == 0) break;
     text.append(buffer, static_cast<std::size_t>(n));
     if (text.size() > max_bytes)  // it grew while we read
-      throw IoError(fmt::format("{}: grew past {} MiB while being read", shown_path(path), max_bytes >> 20));
+      throw IoError(
+          fmt::format("{}: grew past {} MiB while being read", shown_path(path), max_bytes >> 20));
   }
   return text;
 }
 
 void check_output_file(const std::filesystem::path& path) {
   if (path.empty()) throw IoError("output: expected a file name, got ''");
-  if (path.native().size() >= PATH_MAX) throw IoError(fmt::format("{}: file name too long", shown_path(path)));
+  if (path.native().size() >= PATH_MAX)
+    throw IoError(fmt::format("{}: file name too long", shown_path(path)));
   struct stat st {};
   if (::lstat(path.c_str(), &st) == 0) {
     if (!S_ISREG(st.st_mode))
-      throw IoError(fmt::format("{}: is {}; refusing to replace it (write to a regular file)", shown_path(path),
+      throw IoError(fmt::format("{}: is {}; refusing to replace it (write to a regular file)",
+                                shown_path(path),
                                 file_kind(std::filesystem::symlink_status(path).type())));
   } else if (errno != ENOENT) {
     throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
@@ -124,12 +139,13 @@ void check_output_file(const std::filesystem::path& path) {
   if (folder.empty()) folder = ".";
   struct stat dst {};
   if (::stat(folder.c_str(), &dst) != 0)
-    throw IoError(fmt::format("{}: output folder '{}' does not exist", shown_path(path), shown_path(folder)));
+    throw IoError(
+        fmt::format("{}: output folder '{}' does not exist", shown_path(path), shown_path(folder)));
   if (!S_ISDIR(dst.st_mode))
     throw IoError(fmt::format("{}: '{}' is not a folder", shown_path(path), shown_path(folder)));
   if (::access(folder.c_str(), W_OK | X_OK) != 0)
-    throw IoError(fmt::format("{}: output folder '{}' is not writable ({})", shown_path(path), shown_path(folder),
-                              std::strerror(errno)));
+    throw IoError(fmt::format("{}: output folder '{}' is not writable ({})", shown_path(path),
+                              shown_path(folder), std::strerror(errno)));
 }
 
 void ensure_output_dir(const std::filesystem::path& path) {
@@ -143,10 +159,12 @@ void ensure_output_dir(const std::filesystem::path& path) {
     if (errno != ENOENT) throw IoError(fmt::format("{}: {}", shown_path(path), errno_text(errno)));
     std::error_code ec;
     std::filesystem::create_directories(path, ec);
-    if (ec) throw IoError(fmt::format("{}: cannot make the folder: {}", shown_path(path), ec.message()));
+    if (ec)
+      throw IoError(fmt::format("{}: cannot make the folder: {}", shown_path(path), ec.message()));
   }
   if (::access(path.c_str(), W_OK | X_OK) != 0)
-    throw IoError(fmt::format("{}: folder is not writable ({})", shown_path(path), std::strerror(errno)));
+    throw IoError(
+        fmt::format("{}: folder is not writable ({})", shown_path(path), std::strerror(errno)));
 }
 
 namespace {
@@ -238,8 +256,8 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view conte
   std::error_code st_ec;
   const auto st = std::filesystem::symlink_status(path, st_ec);
   if (!st_ec && std::filesystem::exists(st) && st.type() != std::filesystem::file_type::regular)
-    throw IoError(fmt::format("{}: is {}; refusing to replace it (write to a regular file)", shown_path(path),
-                              file_kind(st.type())));
+    throw IoError(fmt::format("{}: is {}; refusing to replace it (write to a regular file)",
+                              shown_path(path), file_kind(st.type())));
   static std::atomic<unsigned> counter{0};
   const std::filesystem::path tmp =
       path.string() + fmt::format(".{}.{}.tmp", static_cast<long>(::getpid()), counter++);
@@ -297,7 +315,8 @@ std::filesystem::path data_dir() {
     std::error_code ec;
     const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (!ec)
-      for (const auto& c : {exe.parent_path() / ".." / "share" / "minigolf" / "data", exe.parent_path() / "data"})
+      for (const auto& c :
+           {exe.parent_path() / ".." / "share" / "minigolf" / "data", exe.parent_path() / "data"})
         if (usable(c)) return c.lexically_normal();
     return std::filesystem::path(MINIGOLF_DATA_DIR);
   }();

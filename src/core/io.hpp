@@ -15,7 +15,8 @@ inline constexpr std::uintmax_t kMaxInputFileBytes = 256ull << 20;
 /// Checks that `path` names a regular file (following links) of at most `max_bytes` and returns
 /// its size. Refuses with one `IoError` line a missing file, a name too long, a directory, and
 /// FIFOs, devices and sockets: they could block forever or never end.
-std::uintmax_t check_input_file(const std::filesystem::path& path, std::uintmax_t max_bytes = kMaxInputFileBytes);
+std::uintmax_t check_input_file(const std::filesystem::path& path,
+                                std::uintmax_t max_bytes = kMaxInputFileBytes);
 
 /// Checks that `path` can take a new file through `write_file_atomic` before expensive work
 /// starts: its folder exists and is writable, and `path` is absent or a regular file (never a
@@ -30,7 +31,8 @@ std::string shown_path(const std::filesystem::path& path);
 
 /// Reads a whole regular file (see `check_input_file`); throws `IoError` naming the path if it
 /// cannot.
-std::string read_text_file(const std::filesystem::path& path, std::uintmax_t max_bytes = kMaxInputFileBytes);
+std::string read_text_file(const std::filesystem::path& path,
+                           std::uintmax_t max_bytes = kMaxInputFileBytes);
 
 /// Writes `content` to `path` atomically: a sibling temp file, flushed, then renamed over.
 void write_file_atomic(const std::filesystem::path& path, std::string_view content);

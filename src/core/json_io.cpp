@@ -17,6 +17,8 @@ nlohmann::json parse_json(const std::string& text, const std::string& source) {
   }
 }
 
-nlohmann::json read_json_file(const std::filesystem::path& path) { return parse_json(read_text_file(path), path.string()); }
+nlohmann::json read_json_file(const std::filesystem::path& path) {
+  return parse_json(read_text_file(path), path.string());
+}
 
 }  // namespace mg

@@ -19,8 +19,7 @@ using Vec3 = Eigen::Vector3d;
 Vec3 bezier(const std::array<Vec3, 6>& p, double u) {
   static constexpr std::array<double, 6> kBinom{1, 5, 10, 10, 5, 1};
   Vec3 r = Vec3::Zero();
-  for (int i = 0; i < 6; ++i)
-    r += kBinom[i] * std::pow(u, i) * std::pow(1.0 - u, 5 - i) * p[i];
+  for (int i = 0; i < 6; ++i) r += kBinom[i] * std::pow(u, i) * std::pow(1.0 - u, 5 - i) * p[i];
   return r;
 }
 
@@ -66,7 +65,9 @@ Demonstration generate_one(const DemoGeneratorConfig& c, int id, Rng& rng) {
   const double tp = c.tau_peak;
   const double v_peak = v_hit / std::pow(std::sin(std::numbers::pi / (2.0 * tp)), 2);
   // Distance covered by time tau (normalised), per unit of T * v_peak.
-  const auto dist = [tp](double tau) { return 0.5 * tau - tp / (2.0 * std::numbers::pi) * std::sin(std::numbers::pi * tau / tp); };
+  const auto dist = [tp](double tau) {
+    return 0.5 * tau - tp / (2.0 * std::numbers::pi) * std::sin(std::numbers::pi * tau / tp);
+  };
   const double duration = length / (v_peak * dist(1.0));
 
   Demonstration d;
@@ -125,12 +126,14 @@ std::vector<Demonstration> generate_demonstrations(const DemoGeneratorConfig& co
   return demos;
 }
 
-std::vector<Demonstration> demonstrations_from_table(const CsvTable& table, std::size_t min_samples) {
+std::vector<Demonstration> demonstrations_from_table(const CsvTable& table,
+                                                     std::size_t min_samples) {
   const std::array<const char*, 8> names{"demo", "t", "x", "y", "z", "vx", "vy", "vz"};
   std::array<std::size_t, 8> col{};
   for (std::size_t i = 0; i < names.size(); ++i) col[i] = table.column_index(names[i]);
   if (table.num_rows() == 0)
-    throw InputError(fmt::format("{}: expected at least one demonstration sample, got none", table.source));
+    throw InputError(
+        fmt::format("{}: expected at least one demonstration sample, got none", table.source));
 
   std::vector<Demonstration> demos;
   std::vector<int> seen;
@@ -138,11 +141,14 @@ std::vector<Demonstration> demonstrations_from_table(const CsvTable& table, std:
     const auto& row = table.rows[r];
     const double id_value = row[col[0]];
     if (id_value != std::round(id_value) || std::abs(id_value) > 1e9)
-      throw InputError(fmt::format("{}: row {}: column 'demo': expected an integer id, got {}", table.source, r + 1, id_value));
+      throw InputError(fmt::format("{}: row {}: column 'demo': expected an integer id, got {}",
+                                   table.source, r + 1, id_value));
     const int id = static_cast<int>(id_value);
     if (demos.empty() || demos.back().id != id) {
       if (std::find(seen.begin(), seen.end(), id) != seen.end())
-        throw InputError(fmt::format("{}: row {}: demonstration {} is not contiguous (its rows must be together)", table.source, r + 1, id));
+        throw InputError(fmt::format(
+            "{}: row {}: demonstration {} is not contiguous (its rows must be together)",
+            table.source, r + 1, id));
       seen.push_back(id);
       demos.emplace_back();
       demos.back().id = id;
@@ -152,18 +158,21 @@ std::vector<Demonstration> demonstrations_from_table(const CsvTable& table, std:
     // squares of 1e154 and more overflow in the fit).
     for (std::size_t c = 1; c < names.size(); ++c)
       if (std::abs(row[col[c]]) > 1e6)
-        throw InputError(fmt::format("{}: row {}: column '{}': {:g} is beyond +-1e6", table.source, r + 1,
-                                     names[c], row[col[c]]));
+        throw InputError(fmt::format("{}: row {}: column '{}': {:g} is beyond +-1e6", table.source,
+                                     r + 1, names[c], row[col[c]]));
     const double t = row[col[1]];
     if (!d.t.empty() && !(t > d.t.back()))
-      throw InputError(fmt::format("{}: row {}: demonstration {}: expected strictly increasing time, got {} after {}", table.source, r + 1, id, t, d.t.back()));
+      throw InputError(fmt::format(
+          "{}: row {}: demonstration {}: expected strictly increasing time, got {} after {}",
+          table.source, r + 1, id, t, d.t.back()));
     d.t.push_back(t);
     d.x.emplace_back(row[col[2]], row[col[3]], row[col[4]]);
     d.xdot.emplace_back(row[col[5]], row[col[6]], row[col[7]]);
   }
   for (const auto& d : demos)
     if (d.size() < min_samples)
-      throw InputError(fmt::format("{}: demonstration {}: expected at least {} samples, got {}", table.source, d.id, min_samples, d.size()));
+      throw InputError(fmt::format("{}: demonstration {}: expected at least {} samples, got {}",
+                                   table.source, d.id, min_samples, d.size()));
   return demos;
 }
 
@@ -175,24 +184,31 @@ std::string format_demonstrations(const std::vector<Demonstration>& demos) {
   std::vector<std::vector<double>> rows;
   for (const auto& d : demos)
     for (std::size_t i = 0; i < d.size(); ++i)
-      rows.push_back({static_cast<double>(d.id), d.t[i], d.x[i].x(), d.x[i].y(), d.x[i].z(), d.xdot[i].x(), d.xdot[i].y(), d.xdot[i].z()});
+      rows.push_back({static_cast<double>(d.id), d.t[i], d.x[i].x(), d.x[i].y(), d.x[i].z(),
+                      d.xdot[i].x(), d.xdot[i].y(), d.xdot[i].z()});
   return format_csv({"demo", "t", "x", "y", "z", "vx", "vy", "vz"}, rows);
 }
 
-DemoSummary summarize_demonstrations(const std::vector<Demonstration>& demos, double end_tolerance) {
-  if (demos.empty()) throw InputError("demonstrations: expected at least one demonstration, got none");
+DemoSummary summarize_demonstrations(const std::vector<Demonstration>& demos,
+                                     double end_tolerance) {
+  if (demos.empty())
+    throw InputError("demonstrations: expected at least one demonstration, got none");
   DemoSummary s;
   s.x_star.setZero();
   Vec3 dir_sum = Vec3::Zero();
   for (const auto& d : demos) {
     if (d.size() < 3 || d.x.size() != d.size() || d.xdot.size() != d.size())
-      throw InputError(fmt::format("demonstration {}: expected at least 3 samples, got {}", d.id, d.size()));
+      throw InputError(
+          fmt::format("demonstration {}: expected at least 3 samples, got {}", d.id, d.size()));
     for (std::size_t i = 0; i < d.size(); ++i)
       if (!std::isfinite(d.t[i]) || !d.x[i].allFinite() || !d.xdot[i].allFinite())
-        throw InputError(fmt::format("demonstration {}: sample {}: expected finite values", d.id, i));
+        throw InputError(
+            fmt::format("demonstration {}: sample {}: expected finite values", d.id, i));
     const double speed = d.xdot.back().norm();
     if (!(speed > 0.05))
-      throw InputError(fmt::format("demonstration {}: expected a non-zero speed at the ball (> 0.05 m/s), got {} m/s", d.id, speed));
+      throw InputError(fmt::format(
+          "demonstration {}: expected a non-zero speed at the ball (> 0.05 m/s), got {} m/s", d.id,
+          speed));
     s.x_star += d.x.back();
     dir_sum += d.xdot.back() / speed;
     s.hitting_speed += speed;
@@ -202,15 +218,23 @@ DemoSummary summarize_demonstrations(const std::vector<Demonstration>& demos, do
   s.hitting_speed /= n;
   for (const auto& d : demos) s.end_spread = std::max(s.end_spread, (d.x.back() - s.x_star).norm());
   if (s.end_spread > end_tolerance)
-    throw InputError(fmt::format("demonstrations: expected a common end point (all within {} m of their mean), got a spread of {} m", end_tolerance, s.end_spread));
+    throw InputError(
+        fmt::format("demonstrations: expected a common end point (all within {} m of their mean), "
+                    "got a spread of {} m",
+                    end_tolerance, s.end_spread));
   Vec3 horizontal(dir_sum.x(), dir_sum.y(), 0.0);
   if (horizontal.norm() < 0.5 * n)
-    throw InputError("demonstrations: expected a common, mostly horizontal approach direction at the ball, got none");
+    throw InputError(
+        "demonstrations: expected a common, mostly horizontal approach direction at the ball, got "
+        "none");
   s.psi0 = horizontal.normalized();
   for (const auto& d : demos) {
     const double c = d.xdot.back().normalized().dot(s.psi0);
     if (c < std::cos(30.0 * std::numbers::pi / 180.0))
-      throw InputError(fmt::format("demonstration {}: expected the final direction within 30 degrees of psi0, got {} degrees", d.id, std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi));
+      throw InputError(
+          fmt::format("demonstration {}: expected the final direction within 30 degrees of psi0, "
+                      "got {} degrees",
+                      d.id, std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / std::numbers::pi));
   }
   return s;
 }

@@ -59,7 +59,8 @@ std::vector<Demonstration> generate_demonstrations(const DemoGeneratorConfig& co
 /// Converts a parsed CSV table (see file format above) to demonstrations; throws InputError on
 /// a missing column, a non-integer or non-contiguous demo id, non-increasing time or a
 /// demonstration with fewer than `min_samples` samples.
-std::vector<Demonstration> demonstrations_from_table(const CsvTable& table, std::size_t min_samples = 2);
+std::vector<Demonstration> demonstrations_from_table(const CsvTable& table,
+                                                     std::size_t min_samples = 2);
 
 /// Reads a demonstrations CSV file (IoError if unreadable, InputError if malformed).
 std::vector<Demonstration> read_demonstrations(const std::filesystem::path& path);
@@ -79,6 +80,7 @@ struct DemoSummary {
 /// one demonstration, each with >= 3 samples, finite values, end points within `end_tolerance`
 /// of their mean, a non-zero final speed with a mostly horizontal direction, and final
 /// directions within 30 degrees of each other. Throws InputError with the reason.
-DemoSummary summarize_demonstrations(const std::vector<Demonstration>& demos, double end_tolerance = 0.02);
+DemoSummary summarize_demonstrations(const std::vector<Demonstration>& demos,
+                                     double end_tolerance = 0.02);
 
 }  // namespace mg::ds

@@ -30,7 +30,9 @@ Modulator parse_modulator(const std::string& name) {
   throw InputError(fmt::format("modulator: expected 'constant' or 'sine', got '{}'", name));
 }
 
-std::string to_string(Modulator modulator) { return modulator == Modulator::kConstant ? "constant" : "sine"; }
+std::string to_string(Modulator modulator) {
+  return modulator == Modulator::kConstant ? "constant" : "sine";
+}
 
 double speed_modulator(Modulator modulator, double s_d, double d0, double r) {
   if (modulator == Modulator::kConstant) return s_d;
@@ -63,7 +65,9 @@ void HittingDsData::set_command(const HittingModel& model, const HittingCommand&
   if (!command.start.allFinite()) throw InputError("start: expected finite coordinates");
   const double d0 = (command.start - model.x_star()).norm();
   if (command.modulator == Modulator::kSine && !(d0 > 1e-3))
-    throw InputError(fmt::format("start: the sine modulator needs a start away from the ball (d0 > 1 mm), got d0 = {} m", d0));
+    throw InputError(fmt::format(
+        "start: the sine modulator needs a start away from the ball (d0 > 1 mm), got d0 = {} m",
+        d0));
   command_ = command;
   s_d_ = command.speed / model.default_speed();
   d0_ = std::max(d0, 1e-3);
@@ -98,8 +102,9 @@ Vec3 target_field(const HittingModel& model, HittingDsData& data, const Vec3& y)
   const auto& s = model.settings();
   const double along = y.dot(psi0);  // < 0 behind the ball
   const double cos_behind = -along / r;
-  const double alpha = smoothstep((s.blend_outer - r) / (s.blend_outer - s.blend_inner)) *
-                       smoothstep((cos_behind - s.cone_cos_min) / (s.cone_cos_max - s.cone_cos_min));
+  const double alpha =
+      smoothstep((s.blend_outer - r) / (s.blend_outer - s.blend_inner)) *
+      smoothstep((cos_behind - s.cone_cos_min) / (s.cone_cos_max - s.cone_cos_min));
   if (alpha > 0.0) {
     const Vec3 perp = y - along * psi0;
     // Inside the cone |along| >= cone_cos_min r > 0, so the ratio stays bounded.
@@ -120,7 +125,8 @@ Vec3 hitting_velocity(const HittingModel& /*model*/, const HittingDsData& data) 
   return data.command().speed * data.direction();
 }
 
-bool ball_reached(const HittingModel& model, const HittingDsData& data, const Vec3& x, double capture_radius) {
+bool ball_reached(const HittingModel& model, const HittingDsData& data, const Vec3& x,
+                  double capture_radius) {
   const Vec3 y = x - model.x_star();
   return y.dot(data.direction()) >= 0.0 && y.norm() <= capture_radius;
 }
@@ -133,14 +139,18 @@ void RolloutOptions::validate() const {
   require_in_range("capture_radius", capture_radius, reach_tolerance, 1.0);
 }
 
-RolloutResult rollout(const HittingModel& model, const HittingCommand& command, const RolloutOptions& options) {
+RolloutResult rollout(const HittingModel& model, const HittingCommand& command,
+                      const RolloutOptions& options) {
   options.validate();
   // The DS is a model of the hitting motion near x*; a start metres away is no motion of the arm
   // (and 1e308 overflows the error norms to inf).
-  if (!command.start.allFinite() || (command.start - model.x_star()).norm() > kMaxRolloutStartDistance)
-    throw InputError(fmt::format("rollout: start: expected a finite point within {} m of x* ({}, {}, {}), got "
-                                 "({}, {}, {})", kMaxRolloutStartDistance, model.x_star()[0], model.x_star()[1],
-                                 model.x_star()[2], command.start[0], command.start[1], command.start[2]));
+  if (!command.start.allFinite() ||
+      (command.start - model.x_star()).norm() > kMaxRolloutStartDistance)
+    throw InputError(
+        fmt::format("rollout: start: expected a finite point within {} m of x* ({}, {}, {}), got "
+                    "({}, {}, {})",
+                    kMaxRolloutStartDistance, model.x_star()[0], model.x_star()[1],
+                    model.x_star()[2], command.start[0], command.start[1], command.start[2]));
   HittingDsData data(model);
   data.set_command(model, command);
   RolloutResult res;
@@ -175,8 +185,10 @@ RolloutResult rollout(const HittingModel& model, const HittingCommand& command, 
     constexpr double kLookahead = 1.5;
     double u = -1.0;
     const double a0 = y0.dot(psi), ad = d.dot(psi);
-    if (a0 < 0.0 && a0 + kLookahead * ad >= 0.0 && (y0 + (-a0 / ad) * d).norm() <= options.capture_radius) {
-      u = -a0 / ad;  // crosses the hitting plane at the ball (far from it, a crossing is just a pass)
+    if (a0 < 0.0 && a0 + kLookahead * ad >= 0.0 &&
+        (y0 + (-a0 / ad) * d).norm() <= options.capture_radius) {
+      u = -a0 /
+          ad;  // crosses the hitting plane at the ball (far from it, a crossing is just a pass)
     } else if (d.squaredNorm() > 0.0) {
       // Distance to x* stops decreasing within the tick: closest approach (e.g. from the side).
       const double uc = -y0.dot(d) / d.squaredNorm();
@@ -223,28 +235,34 @@ RolloutResult rollout(const HittingModel& model, const HittingCommand& command, 
 std::string format_rollout(const RolloutResult& result) {
   std::vector<std::vector<double>> rows;
   for (std::size_t i = 0; i < result.t.size(); ++i)
-    rows.push_back({result.t[i], result.x[i].x(), result.x[i].y(), result.x[i].z(), result.xdot[i].x(),
-                    result.xdot[i].y(), result.xdot[i].z()});
+    rows.push_back({result.t[i], result.x[i].x(), result.x[i].y(), result.x[i].z(),
+                    result.xdot[i].x(), result.xdot[i].y(), result.xdot[i].z()});
   return format_csv({"t", "x", "y", "z", "vx", "vy", "vz"}, rows);
 }
 
-ReproductionError reproduction_error(const HittingModel& model, const std::vector<Demonstration>& demos) {
+ReproductionError reproduction_error(const HittingModel& model,
+                                     const std::vector<Demonstration>& demos) {
   ReproductionError err;
   HittingDsData data(model);
-  data.set_command(model, HittingCommand{0.0, model.default_speed(), Modulator::kConstant, model.x_star() - 0.3 * model.psi0()});
+  data.set_command(model, HittingCommand{0.0, model.default_speed(), Modulator::kConstant,
+                                         model.x_star() - 0.3 * model.psi0()});
   double sum_v = 0.0, sum_a = 0.0, sum_sa = 0.0, sum_sp = 0.0, sum_path = 0.0;
   long n_v = 0, n_path = 0;
   for (const auto& d : demos) {
     for (std::size_t i = 0; i < d.size(); ++i) {
       // Slow samples carry no direction; within 2 cm of x* the field turns with millimetre position
       // noise (0.3 mm at 3 mm is ~17 degrees of the guidance), which says nothing about the fit.
-      if (d.xdot[i].norm() < 0.05 * model.default_speed() || (d.x[i] - model.x_star()).norm() < 0.02) continue;
+      if (d.xdot[i].norm() < 0.05 * model.default_speed() ||
+          (d.x[i] - model.x_star()).norm() < 0.02)
+        continue;
       const Vec3 v = hitting_ds_velocity(model, data, d.x[i]);
       sum_v += (v - d.xdot[i]).squaredNorm();
       const double c = std::clamp(v.normalized().dot(d.xdot[i].normalized()), -1.0, 1.0);
       sum_a += std::pow(std::acos(c), 2);
-      const Eigen::VectorXd f = model.seds_gmr().predict(Eigen::VectorXd(d.x[i] - model.x_star())).mean;
-      sum_sa += std::pow(std::acos(std::clamp(f.normalized().dot(d.xdot[i].normalized()), -1.0, 1.0)), 2);
+      const Eigen::VectorXd f =
+          model.seds_gmr().predict(Eigen::VectorXd(d.x[i] - model.x_star())).mean;
+      sum_sa +=
+          std::pow(std::acos(std::clamp(f.normalized().dot(d.xdot[i].normalized()), -1.0, 1.0)), 2);
       sum_sp += std::pow(v.norm() - d.xdot[i].norm(), 2);
       ++n_v;
     }
@@ -255,7 +273,9 @@ ReproductionError reproduction_error(const HittingModel& model, const std::vecto
       double best = std::numeric_limits<double>::infinity();
       for (std::size_t j = 0; j + 1 < r.x.size(); ++j) {
         const Vec3 seg = r.x[j + 1] - r.x[j];
-        const double u = seg.squaredNorm() > 0 ? std::clamp((p - r.x[j]).dot(seg) / seg.squaredNorm(), 0.0, 1.0) : 0.0;
+        const double u = seg.squaredNorm() > 0
+                             ? std::clamp((p - r.x[j]).dot(seg) / seg.squaredNorm(), 0.0, 1.0)
+                             : 0.0;
         best = std::min(best, (p - (r.x[j] + u * seg)).norm());
       }
       if (r.x.size() == 1) best = (p - r.x[0]).norm();

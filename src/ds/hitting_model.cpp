@@ -26,7 +26,8 @@ Vec3 require_vec3(const std::string& name, const Vec3& v) {
 Vec3 checked_psi0(const Vec3& psi0) {
   require_vec3("psi0", psi0);
   if (std::abs(psi0.norm() - 1.0) > 1e-6 || std::abs(psi0.z()) > 1e-6)
-    throw InputError(fmt::format("psi0: expected a horizontal unit vector, got ({}, {}, {})", psi0.x(), psi0.y(), psi0.z()));
+    throw InputError(fmt::format("psi0: expected a horizontal unit vector, got ({}, {}, {})",
+                                 psi0.x(), psi0.y(), psi0.z()));
   return psi0.normalized();
 }
 
@@ -39,17 +40,19 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 void HittingDsSettings::validate() const {
   require_positive("blend_inner", blend_inner);
   if (!(blend_outer > blend_inner))
-    throw InputError(fmt::format("blend_outer: expected > blend_inner ({}), got {}", blend_inner, blend_outer));
+    throw InputError(
+        fmt::format("blend_outer: expected > blend_inner ({}), got {}", blend_inner, blend_outer));
   require_in_range("cone_cos_min", cone_cos_min, 0.0, 0.99);
   if (!(cone_cos_max > cone_cos_min && cone_cos_max <= 1.0))
-    throw InputError(fmt::format("cone_cos_max: expected in ({}, 1], got {}", cone_cos_min, cone_cos_max));
+    throw InputError(
+        fmt::format("cone_cos_max: expected in ({}, 1], got {}", cone_cos_min, cone_cos_max));
   require_in_range("line_exponent", line_exponent, 1.5, 20.0);
   require_in_range("min_strength_fraction", min_strength_fraction, 0.01, 1.0);
   require_in_range("max_strength_fraction", max_strength_fraction, 1.0, 100.0);
 }
 
-HittingModel::HittingModel(stats::Gmm seds_gmm, stats::Gmm strength_gmm, const Vec3& x_star, const Vec3& psi0,
-                           const HittingDsSettings& settings, double margin)
+HittingModel::HittingModel(stats::Gmm seds_gmm, stats::Gmm strength_gmm, const Vec3& x_star,
+                           const Vec3& psi0, const HittingDsSettings& settings, double margin)
     : seds_gmm_(std::move(seds_gmm)),
       strength_gmm_(std::move(strength_gmm)),
       x_star_(require_vec3("x_star", x_star)),
@@ -58,23 +61,29 @@ HittingModel::HittingModel(stats::Gmm seds_gmm, stats::Gmm strength_gmm, const V
       seds_gmr_(seds_gmm_, {0, 1, 2}, {3, 4, 5}),
       strength_gmr_(strength_gmm_, {0, 1, 2}, {3}) {
   settings_.validate();
-  if (seds_gmm_.dim() != 6) throw InputError(fmt::format("SEDS GMM: expected dimension 6, got {}", seds_gmm_.dim()));
+  if (seds_gmm_.dim() != 6)
+    throw InputError(fmt::format("SEDS GMM: expected dimension 6, got {}", seds_gmm_.dim()));
   if (strength_gmm_.dim() != 4)
-    throw InputError(fmt::format("strength GMM: expected dimension 4, got {}", strength_gmm_.dim()));
+    throw InputError(
+        fmt::format("strength GMM: expected dimension 4, got {}", strength_gmm_.dim()));
   double bias = 0.0;
   max_eigenvalue_ = seds_check(seds_gmm_, &bias);
   if (!(max_eigenvalue_ <= -margin))
-    throw NumericalError(fmt::format("SEDS GMM: expected lambda_max(A_k + A_k^T) <= {} for every component, got {}", -margin, max_eigenvalue_));
+    throw NumericalError(
+        fmt::format("SEDS GMM: expected lambda_max(A_k + A_k^T) <= {} for every component, got {}",
+                    -margin, max_eigenvalue_));
   if (!(bias <= 1e-6))
-    throw NumericalError(fmt::format("SEDS GMM: expected b_k = -A_k x* (relative residual <= 1e-6), got {}", bias));
+    throw NumericalError(
+        fmt::format("SEDS GMM: expected b_k = -A_k x* (relative residual <= 1e-6), got {}", bias));
   Eigen::VectorXd v = strength_gmr_.predict(Eigen::VectorXd::Zero(3)).mean;
   default_speed_ = v[0];
   if (!(std::isfinite(default_speed_) && default_speed_ > 1e-3))
-    throw NumericalError(fmt::format("default hitting speed v(x*): expected > 0.001 m/s, got {}", default_speed_));
+    throw NumericalError(
+        fmt::format("default hitting speed v(x*): expected > 0.001 m/s, got {}", default_speed_));
 }
 
-HittingModel fit_hitting_model(const std::vector<Demonstration>& demos, const HittingFitOptions& options,
-                               HittingFitReport* report) {
+HittingModel fit_hitting_model(const std::vector<Demonstration>& demos,
+                               const HittingFitOptions& options, HittingFitReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
   options.seds.validate();
   options.settings.validate();
@@ -103,15 +112,17 @@ HittingModel fit_hitting_model(const std::vector<Demonstration>& demos, const Hi
   data.ydot.conservativeResize(3, n_seds);
   const int k = options.seds.gaussians;
   if (n_seds < std::max<Eigen::Index>(2 * k, 4))
-    throw InputError(fmt::format("demonstrations: expected at least {} moving samples for {} Gaussians, got {}",
-                                 std::max(2 * k, 4), k, n_seds));
+    throw InputError(
+        fmt::format("demonstrations: expected at least {} moving samples for {} Gaussians, got {}",
+                    std::max(2 * k, 4), k, n_seds));
 
   // A fit on valid demonstrations must not fail: if K components cannot be fitted (the joint
   // covariance of a component is not positive definite in floating point, the constraints do
   // not hold, ...), fit K - 1 and say so.
   const int kv_requested = options.strength_gaussians > 0 ? options.strength_gaussians : k;
   if (kv_requested > n_all)
-    throw InputError(fmt::format("strength Gaussians: expected <= {} (samples), got {}", n_all, kv_requested));
+    throw InputError(
+        fmt::format("strength Gaussians: expected <= {} (samples), got {}", n_all, kv_requested));
   std::vector<std::string> notes;
   std::optional<HittingModel> fitted;
   SedsResult seds;
@@ -139,11 +150,13 @@ HittingModel fit_hitting_model(const std::vector<Demonstration>& demos, const Hi
         if (attempt != 1) seds = fit_seds(data, so);
         if (attempt == 0) plain_fit = true;
         if (attempt >= 1) drop_empty_components(seds, kMinPrior);
-        if (attempt == 1 && seds.notes.empty()) continue;  // nothing to drop: go to the bounded refit
-        fitted.emplace(seds_to_gmm(seds.components), strength_gmm, summary.x_star, summary.psi0, options.settings,
-                       options.seds.margin);
+        if (attempt == 1 && seds.notes.empty())
+          continue;  // nothing to drop: go to the bounded refit
+        fitted.emplace(seds_to_gmm(seds.components), strength_gmm, summary.x_star, summary.psi0,
+                       options.settings, options.seds.margin);
         if (attempt == 2)
-          notes.push_back(fmt::format("K = {}: refitted with |A_ij| <= {:g} 1/s ({})", kk, kBoundedRate, why));
+          notes.push_back(
+              fmt::format("K = {}: refitted with |A_ij| <= {:g} 1/s ({})", kk, kBoundedRate, why));
       } catch (const Error& e) {
         if (why.empty()) {
           why = e.what();
@@ -195,8 +208,10 @@ nlohmann::json hitting_model_to_json(const HittingModel& m) {
   j["psi0"] = {m.psi0().x(), m.psi0().y(), m.psi0().z()};
   j["default_speed"] = m.default_speed();
   j["max_eigenvalue"] = m.max_eigenvalue();
-  j["seds"] = {{"dims", "y_x, y_y, y_z, ydot_x, ydot_y, ydot_z"}, {"gmm", stats::gmm_to_json(m.seds_gmm())}};
-  j["strength"] = {{"dims", "y_x, y_y, y_z, |ydot|"}, {"gmm", stats::gmm_to_json(m.strength_gmm())}};
+  j["seds"] = {{"dims", "y_x, y_y, y_z, ydot_x, ydot_y, ydot_z"},
+               {"gmm", stats::gmm_to_json(m.seds_gmm())}};
+  j["strength"] = {{"dims", "y_x, y_y, y_z, |ydot|"},
+                   {"gmm", stats::gmm_to_json(m.strength_gmm())}};
   j["settings"] = {{"blend_inner", s.blend_inner},
                    {"blend_outer", s.blend_outer},
                    {"cone_cos_min", s.cone_cos_min},
@@ -213,11 +228,13 @@ HittingModel hitting_model_from_json(const nlohmann::json& j, const std::string&
     if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object", source));
     if (!j.contains("format_version") || !j["format_version"].is_number_integer() ||
         j["format_version"].get<int>() != kHittingModelFormatVersion)
-      throw InputError(fmt::format("{}: format_version: expected {}, got {}", source, kHittingModelFormatVersion,
-                                   j.contains("format_version") ? j["format_version"].dump() : "none"));
+      throw InputError(
+          fmt::format("{}: format_version: expected {}, got {}", source, kHittingModelFormatVersion,
+                      j.contains("format_version") ? j["format_version"].dump() : "none"));
     const auto vec3 = [&](const char* key) {
       const auto& a = j.at(key);
-      if (!a.is_array() || a.size() != 3) throw InputError(fmt::format("{}: {}: expected 3 numbers", source, key));
+      if (!a.is_array() || a.size() != 3)
+        throw InputError(fmt::format("{}: {}: expected 3 numbers", source, key));
       return Vec3(a[0].get<double>(), a[1].get<double>(), a[2].get<double>());
     };
     HittingDsSettings s;
@@ -230,12 +247,14 @@ HittingModel hitting_model_from_json(const nlohmann::json& j, const std::string&
     s.min_strength_fraction = js.at("min_strength_fraction").get<double>();
     s.max_strength_fraction = js.at("max_strength_fraction").get<double>();
     stats::Gmm seds = stats::gmm_from_json(j.at("seds").at("gmm"), source + ": seds.gmm");
-    stats::Gmm strength = stats::gmm_from_json(j.at("strength").at("gmm"), source + ": strength.gmm");
+    stats::Gmm strength =
+        stats::gmm_from_json(j.at("strength").at("gmm"), source + ": strength.gmm");
     HittingModel m(std::move(seds), std::move(strength), vec3("x_star"), vec3("psi0"), s);
     const double v0 = j.at("default_speed").get<double>();
     if (!(std::abs(v0 - m.default_speed()) <= 1e-9 * std::max(1.0, std::abs(v0))))
-      throw InputError(fmt::format("{}: default_speed: expected v(x*) = {} from the strength GMM, got {}", source,
-                                   m.default_speed(), v0));
+      throw InputError(
+          fmt::format("{}: default_speed: expected v(x*) = {} from the strength GMM, got {}",
+                      source, m.default_speed(), v0));
     if (j.contains("provenance")) m.provenance = j["provenance"];
     return m;
   } catch (const nlohmann::json::exception& e) {

@@ -34,14 +34,14 @@ inline constexpr int kHittingModelFormatVersion = 1;
 /// the path reaches x* exactly, tangent to psi0. Both fields have E . y < 0, so every blend does
 /// too: |x - x*| still decreases everywhere (the SEDS Lyapunov argument survives the blend).
 struct HittingDsSettings {
-  double blend_inner = 0.10;          ///< [m] pure line guidance inside this radius
-  double blend_outer = 0.25;          ///< [m] pure SEDS field outside this radius
-  double cone_cos_min = 0.0;          ///< no guidance if cos(angle(x* - x, psi0)) below this
-  double cone_cos_max = 0.15;         ///< full guidance above this
-  double line_exponent = 3.0;         ///< n > 1: lateral offset ~ |y_par|^n
-  double min_strength_fraction = 0.1; ///< v(x) floor, fraction of v(x*) (GMR from rest is ~0)
-  double max_strength_fraction = 2.0; ///< v(x) cap, fraction of v(x*) (GMR extrapolates linearly)
-  void validate() const;              ///< throws InputError naming the field
+  double blend_inner = 0.10;           ///< [m] pure line guidance inside this radius
+  double blend_outer = 0.25;           ///< [m] pure SEDS field outside this radius
+  double cone_cos_min = 0.0;           ///< no guidance if cos(angle(x* - x, psi0)) below this
+  double cone_cos_max = 0.15;          ///< full guidance above this
+  double line_exponent = 3.0;          ///< n > 1: lateral offset ~ |y_par|^n
+  double min_strength_fraction = 0.1;  ///< v(x) floor, fraction of v(x*) (GMR from rest is ~0)
+  double max_strength_fraction = 2.0;  ///< v(x) cap, fraction of v(x*) (GMR extrapolates linearly)
+  void validate() const;               ///< throws InputError naming the field
 };
 
 class HittingModel {
@@ -49,7 +49,8 @@ class HittingModel {
   /// Validates everything; throws InputError on malformed parts and NumericalError if the SEDS
   /// GMM violates the stability conditions (lambda_max(A_k + A_k^T) <= -margin, b_k = 0).
   HittingModel(stats::Gmm seds_gmm, stats::Gmm strength_gmm, const Eigen::Vector3d& x_star,
-               const Eigen::Vector3d& psi0, const HittingDsSettings& settings, double margin = 1e-4);
+               const Eigen::Vector3d& psi0, const HittingDsSettings& settings,
+               double margin = 1e-4);
 
   const stats::Gmm& seds_gmm() const { return seds_gmm_; }          ///< (y, ydot), target frame
   const stats::Gmm& strength_gmm() const { return strength_gmm_; }  ///< (y, |ydot|), target frame
@@ -57,7 +58,9 @@ class HittingModel {
   const Eigen::Vector3d& psi0() const { return psi0_; }             ///< unit, world, horizontal
   double default_speed() const { return default_speed_; }           ///< v(x*) [m/s]
   const HittingDsSettings& settings() const { return settings_; }
-  double max_eigenvalue() const { return max_eigenvalue_; }         ///< max_k lambda_max(A_k + A_k^T) [1/s]
+  double max_eigenvalue() const {
+    return max_eigenvalue_;
+  }  ///< max_k lambda_max(A_k + A_k^T) [1/s]
   const stats::GmrConditioner& seds_gmr() const { return seds_gmr_; }
   const stats::GmrConditioner& strength_gmr() const { return strength_gmr_; }
 
@@ -78,16 +81,17 @@ class HittingModel {
 
 struct HittingFitOptions {
   SedsOptions seds;
-  int strength_gaussians = 0;          ///< 0: same as seds.gaussians
-  double min_speed_fraction = 0.05;    ///< samples slower than this x hitting speed are left out of SEDS
-  double end_tolerance = 0.02;         ///< [m] demonstrations must end within this of a common x*
+  int strength_gaussians = 0;  ///< 0: same as seds.gaussians
+  double min_speed_fraction =
+      0.05;                     ///< samples slower than this x hitting speed are left out of SEDS
+  double end_tolerance = 0.02;  ///< [m] demonstrations must end within this of a common x*
   HittingDsSettings settings;
 };
 
 struct HittingFitReport {
   SedsResult seds;
-  int samples_used = 0;       ///< samples in the SEDS fit
-  double fit_seconds = 0.0;   ///< wall time of the whole fit
+  int samples_used = 0;      ///< samples in the SEDS fit
+  double fit_seconds = 0.0;  ///< wall time of the whole fit
   /// What the fit did on its own to succeed (fewer Gaussians, components dropped), one line each.
   std::vector<std::string> notes;
   DemoSummary summary;
@@ -95,7 +99,8 @@ struct HittingFitReport {
 
 /// SEDS + strength GMM fit on demonstrations (world frame). Throws InputError on unusable
 /// demonstrations, NumericalError if the fitted constraints do not hold.
-HittingModel fit_hitting_model(const std::vector<Demonstration>& demos, const HittingFitOptions& options,
+HittingModel fit_hitting_model(const std::vector<Demonstration>& demos,
+                               const HittingFitOptions& options,
                                HittingFitReport* report = nullptr);
 
 nlohmann::json hitting_model_to_json(const HittingModel& model);

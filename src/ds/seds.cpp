@@ -5,9 +5,9 @@
 #include <limits>
 #include <numbers>
 
+#include <fmt/format.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
-#include <fmt/format.h>
 #include <nlopt.hpp>
 
 #include "core/check.hpp"
@@ -20,7 +20,8 @@ using Mat3 = Eigen::Matrix3d;
 using Vec3 = Eigen::Vector3d;
 
 constexpr int kCholeskySize = 6;
-constexpr std::array<std::pair<int, int>, 6> kLowerIndex{{{0, 0}, {1, 0}, {1, 1}, {2, 0}, {2, 1}, {2, 2}}};
+constexpr std::array<std::pair<int, int>, 6> kLowerIndex{
+    {{0, 0}, {1, 0}, {1, 1}, {2, 0}, {2, 1}, {2, 2}}};
 const double kLog2Pi = std::log(2.0 * std::numbers::pi);
 
 // One Gaussian's block of the parameter vector: log prior, mu (3), the Cholesky parameters of
@@ -109,8 +110,8 @@ std::string to_string(SedsObjective objective) {
 
 void SedsOptions::validate() const {
   if (gaussians < 1 || gaussians > kMaxSedsGaussians)
-    throw InputError(fmt::format("gaussians: expected 1..{} (the fit's cost grows as K^2), got {}", kMaxSedsGaussians,
-                                 gaussians));
+    throw InputError(fmt::format("gaussians: expected 1..{} (the fit's cost grows as K^2), got {}",
+                                 kMaxSedsGaussians, gaussians));
   if (max_evaluations < 1)
     throw InputError(fmt::format("max_evaluations: expected >= 1, got {}", max_evaluations));
   require_positive("relative_tolerance", relative_tolerance);
@@ -125,9 +126,12 @@ double stability_eigenvalue(const Mat3& a) {
   return eig.eigenvalues().maxCoeff();
 }
 
-int seds_num_parameters(int gaussians, SedsObjective objective) { return gaussians * block_size(objective); }
+int seds_num_parameters(int gaussians, SedsObjective objective) {
+  return gaussians * block_size(objective);
+}
 
-Eigen::VectorXd pack_seds(const std::vector<SedsComponent>& components, SedsObjective objective, double covariance_floor) {
+Eigen::VectorXd pack_seds(const std::vector<SedsComponent>& components, SedsObjective objective,
+                          double covariance_floor) {
   const int b = block_size(objective);
   Eigen::VectorXd p(static_cast<Eigen::Index>(components.size()) * b);
   for (std::size_t k = 0; k < components.size(); ++k) {
@@ -137,18 +141,21 @@ Eigen::VectorXd pack_seds(const std::vector<SedsComponent>& components, SedsObje
     for (int i = 0; i < 3; ++i) q[kMu + i] = c.mu[i];
     params_from_covariance(c.sigma, covariance_floor, q + kSigma);
     for (int i = 0; i < 9; ++i) q[kA + i] = c.a.data()[i];
-    if (objective == SedsObjective::kLikelihood) params_from_covariance(c.c, covariance_floor, q + kC);
+    if (objective == SedsObjective::kLikelihood)
+      params_from_covariance(c.c, covariance_floor, q + kC);
   }
   return p;
 }
 
-std::vector<SedsComponent> unpack_seds(const Eigen::VectorXd& params, SedsObjective objective, double covariance_floor,
+std::vector<SedsComponent> unpack_seds(const Eigen::VectorXd& params, SedsObjective objective,
+                                       double covariance_floor,
                                        const std::vector<SedsComponent>& template_components) {
   const int b = block_size(objective);
   const auto k_count = static_cast<std::size_t>(params.size() / b);
   std::vector<SedsComponent> out(k_count);
   Eigen::VectorXd w(static_cast<Eigen::Index>(k_count));
-  for (std::size_t k = 0; k < k_count; ++k) w[static_cast<Eigen::Index>(k)] = params[static_cast<Eigen::Index>(k * b + kLogPrior)];
+  for (std::size_t k = 0; k < k_count; ++k)
+    w[static_cast<Eigen::Index>(k)] = params[static_cast<Eigen::Index>(k * b + kLogPrior)];
   const double lse = log_sum_exp(w);
   for (std::size_t k = 0; k < k_count; ++k) {
     const double* q = params.data() + k * b;
@@ -170,8 +177,10 @@ std::vector<SedsComponent> unpack_seds(const Eigen::VectorXd& params, SedsObject
   return out;
 }
 
-double seds_objective(const Eigen::VectorXd& params, const SedsData& data, SedsObjective objective, double covariance_floor,
-                      const std::vector<SedsComponent>& /*template_components*/, Eigen::VectorXd* gradient) {
+double seds_objective(const Eigen::VectorXd& params, const SedsData& data, SedsObjective objective,
+                      double covariance_floor,
+                      const std::vector<SedsComponent>& /*template_components*/,
+                      Eigen::VectorXd* gradient) {
   const int b = block_size(objective);
   const auto kc = static_cast<int>(params.size() / b);
   const bool like = objective == SedsObjective::kLikelihood;
@@ -206,7 +215,8 @@ double seds_objective(const Eigen::VectorXd& params, const SedsData& data, SedsO
   const double inv_n = 1.0 / static_cast<double>(n);
   double value = 0.0;
   Eigen::VectorXd logit(kc), h(kc), dl(kc);
-  std::vector<Vec3> z(static_cast<std::size_t>(kc)), zc(static_cast<std::size_t>(kc)), ay(static_cast<std::size_t>(kc));
+  std::vector<Vec3> z(static_cast<std::size_t>(kc)), zc(static_cast<std::size_t>(kc)),
+      ay(static_cast<std::size_t>(kc));
   for (Eigen::Index i = 0; i < n; ++i) {
     const Vec3 y = data.y.col(i);
     const Vec3 yd = data.ydot.col(i);
@@ -330,7 +340,8 @@ stats::Gmm seds_to_gmm(const std::vector<SedsComponent>& components) {
 }
 
 std::vector<SedsComponent> seds_from_gmm(const stats::Gmm& gmm) {
-  if (gmm.dim() != 6) throw InputError(fmt::format("SEDS GMM: expected dimension 6 (y, ydot), got {}", gmm.dim()));
+  if (gmm.dim() != 6)
+    throw InputError(fmt::format("SEDS GMM: expected dimension 6 (y, ydot), got {}", gmm.dim()));
   std::vector<SedsComponent> out;
   for (int k = 0; k < gmm.num_components(); ++k) {
     const auto& s = gmm.covariances[static_cast<std::size_t>(k)];
@@ -364,7 +375,8 @@ std::vector<SedsComponent> seds_initial_guess(const SedsData& data, const SedsOp
   options.validate();
   const auto n = data.size();
   if (n < options.gaussians)
-    throw InputError(fmt::format("SEDS: expected at least as many samples as Gaussians ({}), got {}", options.gaussians, n));
+    throw InputError(fmt::format(
+        "SEDS: expected at least as many samples as Gaussians ({}), got {}", options.gaussians, n));
   Eigen::MatrixXd joint(n, 6);
   joint.leftCols<3>() = data.y.transpose();
   joint.rightCols<3>() = data.ydot.transpose();
@@ -388,7 +400,8 @@ std::vector<SedsComponent> seds_initial_guess(const SedsData& data, const SedsOp
       c.a *= 0.5 * options.max_rate / biggest;
       const Mat3 s2 = 0.5 * (c.a + c.a.transpose());
       Eigen::SelfAdjointEigenSolver<Mat3> e2(s2);
-      c.a = e2.eigenvectors() * e2.eigenvalues().cwiseMin(-delta).asDiagonal() * e2.eigenvectors().transpose() +
+      c.a = e2.eigenvectors() * e2.eigenvalues().cwiseMin(-delta).asDiagonal() *
+                e2.eigenvectors().transpose() +
             0.5 * (c.a - c.a.transpose());
     }
     c.prior = std::max(c.prior, 1e-6);
@@ -396,7 +409,9 @@ std::vector<SedsComponent> seds_initial_guess(const SedsData& data, const SedsOp
     c.c = 0.5 * (c.c + c.c.transpose()).eval();
     Eigen::SelfAdjointEigenSolver<Mat3> ec(c.c);
     if (ec.eigenvalues().minCoeff() < options.covariance_floor)
-      c.c = ec.eigenvectors() * ec.eigenvalues().cwiseMax(10 * options.covariance_floor).asDiagonal() * ec.eigenvectors().transpose();
+      c.c = ec.eigenvectors() *
+            ec.eigenvalues().cwiseMax(10 * options.covariance_floor).asDiagonal() *
+            ec.eigenvectors().transpose();
   }
   double total = 0.0;
   for (const auto& c : comps) total += c.prior;
@@ -417,7 +432,8 @@ struct OptContext {
 
 double max_constraint(const std::vector<double>& x, int kc, int b) {
   double worst = -std::numeric_limits<double>::infinity();
-  for (int k = 0; k < kc; ++k) worst = std::max(worst, stability_eigenvalue(Eigen::Map<const Mat3>(x.data() + k * b + kA)));
+  for (int k = 0; k < kc; ++k)
+    worst = std::max(worst, stability_eigenvalue(Eigen::Map<const Mat3>(x.data() + k * b + kA)));
   return worst;
 }
 
@@ -427,11 +443,14 @@ double nlopt_objective(const std::vector<double>& x, std::vector<double>& grad, 
   if (ctx->options->on_evaluation) ctx->options->on_evaluation(ctx->evaluations);
   const Eigen::Map<const Eigen::VectorXd> p(x.data(), static_cast<Eigen::Index>(x.size()));
   Eigen::VectorXd g;
-  const double v = seds_objective(p, *ctx->data, ctx->options->objective, ctx->options->covariance_floor, *ctx->templ,
-                                  grad.empty() ? nullptr : &g);
-  if (!grad.empty()) Eigen::Map<Eigen::VectorXd>(grad.data(), static_cast<Eigen::Index>(grad.size())) = g;
+  const double v =
+      seds_objective(p, *ctx->data, ctx->options->objective, ctx->options->covariance_floor,
+                     *ctx->templ, grad.empty() ? nullptr : &g);
+  if (!grad.empty())
+    Eigen::Map<Eigen::VectorXd>(grad.data(), static_cast<Eigen::Index>(grad.size())) = g;
   const int b = block_size(ctx->options->objective);
-  // Remember the best point that satisfies the REQUIRED margin: the answer if SLSQP ends infeasible.
+  // Remember the best point that satisfies the REQUIRED margin: the answer if SLSQP ends
+  // infeasible.
   if (std::isfinite(v) && v < ctx->best_value &&
       max_constraint(x, static_cast<int>(x.size()) / b, b) <= -ctx->options->margin) {
     ctx->best_value = v;
@@ -440,7 +459,8 @@ double nlopt_objective(const std::vector<double>& x, std::vector<double>& grad, 
   return std::isfinite(v) ? v : 1e300;
 }
 
-void nlopt_constraints(unsigned m, double* result, unsigned n, const double* x, double* grad, void* raw) {
+void nlopt_constraints(unsigned m, double* result, unsigned n, const double* x, double* grad,
+                       void* raw) {
   const auto* ctx = static_cast<const OptContext*>(raw);
   const int b = block_size(ctx->options->objective);
   if (grad) std::fill(grad, grad + static_cast<std::size_t>(m) * n, 0.0);
@@ -459,13 +479,20 @@ void nlopt_constraints(unsigned m, double* result, unsigned n, const double* x, 
 
 std::string nlopt_status_name(nlopt::result r) {
   switch (r) {
-    case nlopt::SUCCESS: return "success";
-    case nlopt::STOPVAL_REACHED: return "stopval reached";
-    case nlopt::FTOL_REACHED: return "ftol reached";
-    case nlopt::XTOL_REACHED: return "xtol reached";
-    case nlopt::MAXEVAL_REACHED: return "maxeval reached";
-    case nlopt::MAXTIME_REACHED: return "maxtime reached";
-    default: return fmt::format("nlopt result {}", static_cast<int>(r));
+    case nlopt::SUCCESS:
+      return "success";
+    case nlopt::STOPVAL_REACHED:
+      return "stopval reached";
+    case nlopt::FTOL_REACHED:
+      return "ftol reached";
+    case nlopt::XTOL_REACHED:
+      return "xtol reached";
+    case nlopt::MAXEVAL_REACHED:
+      return "maxeval reached";
+    case nlopt::MAXTIME_REACHED:
+      return "maxtime reached";
+    default:
+      return fmt::format("nlopt result {}", static_cast<int>(r));
   }
 }
 
@@ -478,13 +505,15 @@ void drop_empty_components(SedsResult& result, double min_prior) {
       if (result.components[k].prior >= min_prior) {
         kept.push_back(result.components[k]);
       } else {
-        result.notes.push_back(fmt::format("dropped SEDS component {} of {} (prior {:.2g} < {:g}: no data left in it)", k,
-                                           result.components.size(), result.components[k].prior, min_prior));
+        result.notes.push_back(
+            fmt::format("dropped SEDS component {} of {} (prior {:.2g} < {:g}: no data left in it)",
+                        k, result.components.size(), result.components[k].prior, min_prior));
       }
     }
     if (kept.empty()) {
-      kept.push_back(*std::max_element(result.components.begin(), result.components.end(),
-                                       [](const auto& a, const auto& b) { return a.prior < b.prior; }));
+      kept.push_back(
+          *std::max_element(result.components.begin(), result.components.end(),
+                            [](const auto& a, const auto& b) { return a.prior < b.prior; }));
       result.notes.clear();
     }
     if (kept.size() < result.components.size()) {
@@ -498,7 +527,8 @@ void drop_empty_components(SedsResult& result, double min_prior) {
 
 SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
   options.validate();
-  if (!data.y.allFinite() || !data.ydot.allFinite()) throw InputError("SEDS data: expected finite samples");
+  if (!data.y.allFinite() || !data.ydot.allFinite())
+    throw InputError("SEDS data: expected finite samples");
   const auto init = seds_initial_guess(data, options);
   const Eigen::VectorXd p0 = pack_seds(init, options.objective, options.covariance_floor);
   const int b = block_size(options.objective);
@@ -508,11 +538,14 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
   ctx.options = &options;
   ctx.templ = &init;
   SedsResult result;
-  result.initial_objective = seds_objective(p0, data, options.objective, options.covariance_floor, init, nullptr);
+  result.initial_objective =
+      seds_objective(p0, data, options.objective, options.covariance_floor, init, nullptr);
 
   nlopt::opt opt(nlopt::LD_SLSQP, static_cast<unsigned>(p0.size()));
   opt.set_min_objective(nlopt_objective, &ctx);
-  opt.add_inequality_mconstraint(nlopt_constraints, &ctx, std::vector<double>(static_cast<std::size_t>(options.gaussians), 1e-9));
+  opt.add_inequality_mconstraint(
+      nlopt_constraints, &ctx,
+      std::vector<double>(static_cast<std::size_t>(options.gaussians), 1e-9));
   if (options.max_rate > 0.0) {
     std::vector<double> lower(p0.size(), -HUGE_VAL), upper(p0.size(), HUGE_VAL);
     for (int k = 0; k < options.gaussians; ++k)
@@ -535,7 +568,8 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
     result.optimizer_status = fmt::format("nlopt stopped early ({})", e.what());
   }
   result.evaluations = ctx.evaluations;
-  const bool final_ok = max_constraint(x, options.gaussians, b) <= -options.margin && std::isfinite(fx);
+  const bool final_ok =
+      max_constraint(x, options.gaussians, b) <= -options.margin && std::isfinite(fx);
   if (!final_ok || (ctx.best_x.size() == x.size() && ctx.best_value < fx)) {
     if (ctx.best_x.empty()) {
       x.assign(p0.data(), p0.data() + p0.size());  // the projected start is feasible
@@ -546,11 +580,13 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
     }
   }
   const Eigen::Map<const Eigen::VectorXd> p(x.data(), static_cast<Eigen::Index>(x.size()));
-  result.final_objective = seds_objective(p, data, options.objective, options.covariance_floor, init, nullptr);
+  result.final_objective =
+      seds_objective(p, data, options.objective, options.covariance_floor, init, nullptr);
   result.components = unpack_seds(p, options.objective, options.covariance_floor, init);
 
   if (options.objective == SedsObjective::kMse) {
-    // The MSE objective leaves the velocity covariance free: estimate it from the weighted residuals.
+    // The MSE objective leaves the velocity covariance free: estimate it from the weighted
+    // residuals.
     for (auto& c : result.components) c.c.setZero();
     std::vector<double> weight(result.components.size(), 0.0);
     for (Eigen::Index i = 0; i < data.size(); ++i) {
@@ -560,7 +596,9 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
         const auto& c = result.components[k];
         const Eigen::LLT<Mat3> llt(c.sigma);
         const Vec3 w = llt.matrixL().solve(y - c.mu);
-        logit[static_cast<Eigen::Index>(k)] = std::log(c.prior) - 0.5 * (2.0 * llt.matrixLLT().diagonal().array().log().sum() + w.squaredNorm());
+        logit[static_cast<Eigen::Index>(k)] =
+            std::log(c.prior) -
+            0.5 * (2.0 * llt.matrixLLT().diagonal().array().log().sum() + w.squaredNorm());
       }
       const Eigen::VectorXd h = (logit.array() - log_sum_exp(logit)).exp();
       for (std::size_t k = 0; k < result.components.size(); ++k) {
@@ -577,10 +615,12 @@ SedsResult fit_seds(const SedsData& data, const SedsOptions& options) {
   }
 
   result.max_eigenvalue = -std::numeric_limits<double>::infinity();
-  for (const auto& c : result.components) result.max_eigenvalue = std::max(result.max_eigenvalue, stability_eigenvalue(c.a));
+  for (const auto& c : result.components)
+    result.max_eigenvalue = std::max(result.max_eigenvalue, stability_eigenvalue(c.a));
   if (!(result.max_eigenvalue <= -options.margin))
-    throw NumericalError(fmt::format("SEDS fit: expected lambda_max(A_k + A_k^T) <= {} for every component, got {}",
-                                     -options.margin, result.max_eigenvalue));
+    throw NumericalError(
+        fmt::format("SEDS fit: expected lambda_max(A_k + A_k^T) <= {} for every component, got {}",
+                    -options.margin, result.max_eigenvalue));
   return result;
 }
 

@@ -39,10 +39,10 @@ std::string to_string(SedsObjective objective);
 /// One SEDS component in conditional form, target frame.
 struct SedsComponent {
   double prior = 1.0;
-  Eigen::Vector3d mu = Eigen::Vector3d::Zero();          ///< position mean [m]
-  Eigen::Matrix3d sigma = Eigen::Matrix3d::Identity();   ///< position covariance [m^2]
-  Eigen::Matrix3d a = -Eigen::Matrix3d::Identity();      ///< dynamics matrix [1/s]
-  Eigen::Matrix3d c = Eigen::Matrix3d::Identity();       ///< velocity covariance given y [m^2/s^2]
+  Eigen::Vector3d mu = Eigen::Vector3d::Zero();         ///< position mean [m]
+  Eigen::Matrix3d sigma = Eigen::Matrix3d::Identity();  ///< position covariance [m^2]
+  Eigen::Matrix3d a = -Eigen::Matrix3d::Identity();     ///< dynamics matrix [1/s]
+  Eigen::Matrix3d c = Eigen::Matrix3d::Identity();      ///< velocity covariance given y [m^2/s^2]
 };
 
 /// Training samples in the target frame, one per column.
@@ -57,21 +57,22 @@ struct SedsData {
 inline constexpr int kMaxSedsGaussians = 12;
 
 struct SedsOptions {
-  int gaussians = 4;                                     ///< K >= 1
+  int gaussians = 4;  ///< K >= 1
   SedsObjective objective = SedsObjective::kLikelihood;
-  std::uint64_t seed = 1;                                ///< for k-means++ / EM
-  int max_evaluations = 1500;                            ///< NLopt objective evaluations at most
-  double relative_tolerance = 1e-7;                      ///< NLopt ftol_rel
-  double margin = 1e-4;                                  ///< required: lambda_max(A+A^T) <= -margin [1/s]
-  double optimizer_margin = 1e-2;                        ///< margin used inside the optimiser (stricter) [1/s]
-  double covariance_floor = 1e-6;                        ///< added to every covariance diagonal (units^2)
+  std::uint64_t seed = 1;            ///< for k-means++ / EM
+  int max_evaluations = 1500;        ///< NLopt objective evaluations at most
+  double relative_tolerance = 1e-7;  ///< NLopt ftol_rel
+  double margin = 1e-4;              ///< required: lambda_max(A+A^T) <= -margin [1/s]
+  double optimizer_margin = 1e-2;    ///< margin used inside the optimiser (stricter) [1/s]
+  double covariance_floor = 1e-6;    ///< added to every covariance diagonal (units^2)
   /// Bound on every entry of A_k [1/s] (box constraint in the optimiser; 0 = none). Without it
   /// the optimiser can drive A_k of little-used components (and of clean, noise-free data) to
   /// 1e2..1e6, and the joint covariance C_k + A_k Sigma_k A_k^T loses positive definiteness to
   /// round-off. The hitting-model fit retries with 500 1/s (a 2 ms time constant) when that
   /// happens (see fit_hitting_model).
   double max_rate = 0.0;
-  /// Called after every objective evaluation with the count so far (progress display; may be empty).
+  /// Called after every objective evaluation with the count so far (progress display; may be
+  /// empty).
   std::function<void(int evaluations)> on_evaluation;
   void validate() const;
 };
@@ -80,10 +81,11 @@ struct SedsResult {
   std::vector<SedsComponent> components;
   double initial_objective = 0.0;  ///< objective at the feasible initial guess
   double final_objective = 0.0;
-  int evaluations = 0;             ///< objective evaluations used
-  std::string optimizer_status;    ///< NLopt's result, or why the best feasible point was taken
-  double max_eigenvalue = 0.0;     ///< max over k of lambda_max(A_k + A_k^T) [1/s]
-  std::vector<std::string> notes;  ///< what the fit did on its own (components dropped), for the user
+  int evaluations = 0;           ///< objective evaluations used
+  std::string optimizer_status;  ///< NLopt's result, or why the best feasible point was taken
+  double max_eigenvalue = 0.0;   ///< max over k of lambda_max(A_k + A_k^T) [1/s]
+  std::vector<std::string>
+      notes;  ///< what the fit did on its own (components dropped), for the user
 };
 
 /// Largest eigenvalue of `A + A^T` (< 0 means the stability condition holds for this component).
@@ -101,12 +103,14 @@ std::vector<SedsComponent> unpack_seds(const Eigen::VectorXd& params, SedsObject
 /// Objective value at `params`; if `gradient` is non-null it receives the analytic gradient.
 /// For kMse, `template_components` supplies the (unused) velocity covariances' count only.
 double seds_objective(const Eigen::VectorXd& params, const SedsData& data, SedsObjective objective,
-                      double covariance_floor, const std::vector<SedsComponent>& template_components,
+                      double covariance_floor,
+                      const std::vector<SedsComponent>& template_components,
                       Eigen::VectorXd* gradient);
 
 /// GMR of a SEDS model at y (allocation-free, log-sum-exp weights): f(y) = sum_k h_k(y) A_k y.
 /// For tests and reporting; the hitting DS evaluates the equivalent joint GMM through mg::stats.
-Eigen::Vector3d seds_velocity(const std::vector<SedsComponent>& components, const Eigen::Vector3d& y);
+Eigen::Vector3d seds_velocity(const std::vector<SedsComponent>& components,
+                              const Eigen::Vector3d& y);
 
 /// Initial feasible guess: k-means + EM over (y, ydot) (mg::stats::fit_gmm), then each A_k is
 /// projected onto the constraint set (symmetric part's eigenvalues clamped to <= -delta).

@@ -41,7 +41,8 @@ double quantile(std::vector<double> v, double q) {
 
 std::vector<PlantAdaptation> adaptation_study(const control::ModuleConfig& config,
                                               std::shared_ptr<const learning::Model> prior,
-                                              const field::Situations& region, const AdaptationOptions& options,
+                                              const field::Situations& region,
+                                              const AdaptationOptions& options,
                                               const std::function<void(int, int)>& progress) {
   options.validate();
   if (!prior) throw InputError("adaptation: needs a nominal model");
@@ -107,13 +108,15 @@ std::vector<PlantAdaptation> adaptation_study(const control::ModuleConfig& confi
 }
 
 std::string adaptation_csv(const std::vector<PlantAdaptation>& rows, CurveLearner learner) {
-  std::string out = "plant,learner,putts,sunk,situations,success,oracle_found,oracle_ceiling,of_ceiling\n";
+  std::string out =
+      "plant,learner,putts,sunk,situations,success,oracle_found,oracle_ceiling,of_ceiling\n";
   for (const auto& r : rows)
     for (std::size_t k = 0; k < r.putts.size(); ++k) {
       const double success = static_cast<double>(r.sunk[k]) / r.situations;
-      const double ceiling = r.oracle_found >= 0 ? static_cast<double>(r.oracle_found) / r.situations : std::nan("");
-      out += fmt::format("{},{},{},{},{},{},{},{},{}\n", r.index, to_string(learner), r.putts[k], r.sunk[k],
-                         r.situations, success, r.oracle_found, ceiling,
+      const double ceiling =
+          r.oracle_found >= 0 ? static_cast<double>(r.oracle_found) / r.situations : std::nan("");
+      out += fmt::format("{},{},{},{},{},{},{},{},{}\n", r.index, to_string(learner), r.putts[k],
+                         r.sunk[k], r.situations, success, r.oracle_found, ceiling,
                          r.oracle_found > 0 ? success / ceiling : std::nan(""));
     }
   return out;

@@ -18,14 +18,14 @@
 namespace mg::experiments {
 
 struct AdaptationOptions {
-  int plants = 10;                        ///< plant k: plant::random_plant(plant_seed + k) (`plant random --seed`)
+  int plants = 10;  ///< plant k: plant::random_plant(plant_seed + k) (`plant random --seed`)
   std::uint64_t plant_seed = 1;
   std::vector<int> checkpoints{0, 1, 2, 3, 5, 10};  ///< adaptation putts (0: the nominal model)
-  int situations = 100;                   ///< test situations per checkpoint
+  int situations = 100;                             ///< test situations per checkpoint
   std::uint64_t test_seed = 7;
-  std::uint64_t seed = 1;                 ///< the adaptation runs
+  std::uint64_t seed = 1;                       ///< the adaptation runs
   CurveLearner learner = CurveLearner::kAdapt;  ///< adapt | adapt-play | append | self-teach
-  bool oracle = true;                     ///< also the plant's oracle ceiling
+  bool oracle = true;                           ///< also the plant's oracle ceiling
   int threads = 0;
   /// Plants given instead of random ones (a documented stand-in for the real WAM, say).
   std::vector<plant::Plant> given;
@@ -38,14 +38,15 @@ struct PlantAdaptation {
   std::vector<int> putts;  ///< the checkpoints
   std::vector<int> sunk;   ///< test situations sunk after that many adaptation putts
   int situations = 0;
-  int oracle_found = -1;   ///< -1 without the oracle
+  int oracle_found = -1;  ///< -1 without the oracle
 };
 
 /// Runs the study on `config`'s field (the robot's belief) with `prior` as the nominal model.
 /// Plants run in parallel (and over MPI processes); the same bits for any thread count.
 std::vector<PlantAdaptation> adaptation_study(const control::ModuleConfig& config,
                                               std::shared_ptr<const learning::Model> prior,
-                                              const field::Situations& region, const AdaptationOptions& options,
+                                              const field::Situations& region,
+                                              const AdaptationOptions& options,
                                               const std::function<void(int, int)>& progress = {});
 
 /// CSV: plant,learner,putts,sunk,situations,success,oracle_found,oracle_ceiling,of_ceiling.

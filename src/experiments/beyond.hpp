@@ -21,15 +21,14 @@ struct BeyondOptions {
   teacher::TeacherOptions teacher;
   std::function<std::string(const std::string&)> csv_path;  ///< file name -> path
   std::function<std::string(const std::string&)> fig_path;
-  std::function<void(const std::string&)> plot;             ///< plot.py arguments
-  std::function<void(const std::string&)> say;              ///< progress lines
+  std::function<void(const std::string&)> plot;  ///< plot.py arguments
+  std::function<void(const std::string&)> say;   ///< progress lines
 };
 
 /// Markdown rows of the field's results, by table: "curves", "goal", "hindsight", "noise", and
 /// "figures" (image links). `teacher_models`: the teacher-trained learners by method.
-std::map<std::string, std::string> beyond_thesis(const system::System& system, const std::string& name,
-                                                 const field::Situations& region,
-                                                 const std::map<std::string, learning::Model>& teacher_models,
-                                                 const BeyondOptions& options);
+std::map<std::string, std::string> beyond_thesis(
+    const system::System& system, const std::string& name, const field::Situations& region,
+    const std::map<std::string, learning::Model>& teacher_models, const BeyondOptions& options);
 
 }  // namespace mg::experiments

@@ -17,9 +17,10 @@
 namespace mg::experiments {
 namespace {
 
-const std::vector<std::string> kColumns = {"index", "hole_x", "hole_y", "xi_x", "xi_y", "angle", "speed",
-                                           "margin_angle", "margin_speed", "launch_angle", "launch_speed",
-                                           "approach_speed", "full_putts", "ball_putts"};
+const std::vector<std::string> kColumns = {
+    "index",        "hole_x",         "hole_y",       "xi_x",         "xi_y",
+    "angle",        "speed",          "margin_angle", "margin_speed", "launch_angle",
+    "launch_speed", "approach_speed", "full_putts",   "ball_putts"};
 
 /// `repaired` < 0: the continuity pass has not run yet.
 std::string format_file(const std::string& settings, const std::map<int, teacher::Example>& done,
@@ -30,30 +31,36 @@ std::string format_file(const std::string& settings, const std::map<int, teacher
     if (e.found)
       rows.push_back({static_cast<double>(i), e.hole[0], e.hole[1], e.hole[0] - field.tee[0],
                       e.hole[1] - field.tee[1], e.angle, e.speed, e.margin_angle, e.margin_speed,
-                      e.launch_angle, e.launch_speed, e.approach_speed, static_cast<double>(e.full_putts),
-                      static_cast<double>(e.ball_putts)});
+                      e.launch_angle, e.launch_speed, e.approach_speed,
+                      static_cast<double>(e.full_putts), static_cast<double>(e.ball_putts)});
     else
-      unplayable += fmt::format("# unplayable: index={} hole_x={} hole_y={} full_putts={} ball_putts={}\n", i,
-                                e.hole[0], e.hole[1], e.full_putts, e.ball_putts);
+      unplayable +=
+          fmt::format("# unplayable: index={} hole_x={} hole_y={} full_putts={} ball_putts={}\n", i,
+                      e.hole[0], e.hole[1], e.full_putts, e.ball_putts);
   }
-  const std::string pass = repaired >= 0 ? fmt::format("# continuity pass: repaired={}\n", repaired) : "";
+  const std::string pass =
+      repaired >= 0 ? fmt::format("# continuity pass: repaired={}\n", repaired) : "";
   return "# " + settings + "\n" + format_csv(kColumns, rows) + unplayable + pass;
 }
 
 /// Reads a file written by format_file: the examples by index. Throws InputError on a mismatch.
-std::map<int, teacher::Example> read_existing(const std::filesystem::path& path, const std::string& settings,
-                                              const std::vector<std::array<double, 2>>& holes, int& repaired) {
+std::map<int, teacher::Example> read_existing(const std::filesystem::path& path,
+                                              const std::string& settings,
+                                              const std::vector<std::array<double, 2>>& holes,
+                                              int& repaired) {
   const std::string text = read_text_file(path);
   std::istringstream in(text);
   std::string first;
   std::getline(in, first);
   if (first != "# " + settings)
-    throw InputError(fmt::format("--resume: {}: its settings differ from this run's:\n  file: {}\n  run:  # {}",
-                                 path.string(), first, settings));
+    throw InputError(
+        fmt::format("--resume: {}: its settings differ from this run's:\n  file: {}\n  run:  # {}",
+                    path.string(), first, settings));
   std::map<int, teacher::Example> done;
   const auto check_index = [&](double v) {
     if (v != std::floor(v) || v < 0 || v >= static_cast<double>(holes.size()))
-      throw InputError(fmt::format("--resume: {}: index {} is not a situation of this run", path.string(), v));
+      throw InputError(
+          fmt::format("--resume: {}: index {} is not a situation of this run", path.string(), v));
     return static_cast<int>(v);
   };
   const CsvTable table = parse_csv(text, path.string());
@@ -81,7 +88,8 @@ std::map<int, teacher::Example> read_existing(const std::filesystem::path& path,
     if (line.rfind("# unplayable:", 0) != 0) continue;
     double index = -1, hx = 0, hy = 0;
     int full = 0, ball = 0;
-    if (std::sscanf(line.c_str(), "# unplayable: index=%lf hole_x=%lf hole_y=%lf full_putts=%d ball_putts=%d",
+    if (std::sscanf(line.c_str(),
+                    "# unplayable: index=%lf hole_x=%lf hole_y=%lf full_putts=%d ball_putts=%d",
                     &index, &hx, &hy, &full, &ball) != 5)
       throw InputError(fmt::format("--resume: {}: malformed line '{}'", path.string(), line));
     teacher::Example e;
@@ -104,7 +112,9 @@ double median(std::vector<double> v) {
 int repair_continuity(const system::System& system, const CollectOptions& options,
                       std::map<int, teacher::Example>& done) {
   const auto& tee = system.field().tee;
-  const auto aim = [&](const teacher::Example& e) { return std::atan2(e.hole[1] - tee[1], e.hole[0] - tee[0]); };
+  const auto aim = [&](const teacher::Example& e) {
+    return std::atan2(e.hole[1] - tee[1], e.hole[0] - tee[0]);
+  };
   struct Job {
     int index;
     std::array<double, 2> hint;
@@ -115,7 +125,8 @@ int repair_continuity(const system::System& system, const CollectOptions& option
   for (const auto& [i, e] : done) {
     std::vector<std::pair<double, int>> near;
     for (const auto& [j, n] : done)
-      if (j != i && n.found) near.emplace_back(std::hypot(n.hole[0] - e.hole[0], n.hole[1] - e.hole[1]), j);
+      if (j != i && n.found)
+        near.emplace_back(std::hypot(n.hole[0] - e.hole[0], n.hole[1] - e.hole[1]), j);
     if (near.size() < 2) continue;
     std::sort(near.begin(), near.end());
     near.resize(std::min<std::size_t>(4, near.size()));
@@ -128,7 +139,8 @@ int repair_continuity(const system::System& system, const CollectOptions& option
     const double dev = e.found ? std::max(std::abs(e.angle - aim(e) - rel_med) / kAngleJump,
                                           speed ? std::abs(e.speed - v_med) / kSpeedJump : 0.0)
                                : 1e9;
-    if (dev > 1.0) jobs.push_back({i, {aim(e) + rel_med, speed ? v_med : options.teacher.fixed_speed}, dev});
+    if (dev > 1.0)
+      jobs.push_back({i, {aim(e) + rel_med, speed ? v_med : options.teacher.fixed_speed}, dev});
   }
   if (jobs.empty()) return 0;
   std::vector<teacher::Example> fresh(jobs.size());
@@ -136,7 +148,8 @@ int repair_continuity(const system::System& system, const CollectOptions& option
     teacher::TeacherOptions t = options.teacher;
     t.use_hint = true;
     t.hint = jobs[static_cast<std::size_t>(k)].hint;
-    fresh[static_cast<std::size_t>(k)] = teacher::teach(system, data, done.at(jobs[static_cast<std::size_t>(k)].index).hole, t);
+    fresh[static_cast<std::size_t>(k)] =
+        teacher::teach(system, data, done.at(jobs[static_cast<std::size_t>(k)].index).hole, t);
   });
   int replaced = 0;
   for (std::size_t k = 0; k < jobs.size(); ++k) {
@@ -157,7 +170,8 @@ int repair_continuity(const system::System& system, const CollectOptions& option
 
 }  // namespace
 
-std::string collect_settings(const system::System& system, const std::vector<std::array<double, 2>>& holes,
+std::string collect_settings(const system::System& system,
+                             const std::vector<std::array<double, 2>>& holes,
                              const CollectOptions& o) {
   const auto& t = o.teacher;
   return fmt::format(
@@ -181,7 +195,8 @@ CollectResult collect(const system::System& system, const std::vector<std::array
   std::map<int, teacher::Example> done;
   std::error_code ec;
   int repaired = -1;
-  if (options.resume && std::filesystem::exists(out, ec)) done = read_existing(out, settings, holes, repaired);
+  if (options.resume && std::filesystem::exists(out, ec))
+    done = read_existing(out, settings, holes, repaired);
   CollectResult result;
   result.resumed = static_cast<int>(done.size());
   std::vector<int> todo;
@@ -190,7 +205,8 @@ CollectResult collect(const system::System& system, const std::vector<std::array
   std::vector<teacher::Example> fresh(todo.size());
   int finished = result.resumed;
   const int total = static_cast<int>(holes.size());
-  if (!todo.empty()) write_file_atomic(out, format_file(settings, done, system.field()));  // the pass reruns
+  if (!todo.empty())
+    write_file_atomic(out, format_file(settings, done, system.field()));  // the pass reruns
   system::distributed_for(
       system, fresh, options.threads,
       [&](int k, system::SystemData& data) {
@@ -201,10 +217,12 @@ CollectResult collect(const system::System& system, const std::vector<std::array
       [&](int k) {
         const teacher::Example& e = fresh[static_cast<std::size_t>(k)];
         done[todo[static_cast<std::size_t>(k)]] = e;
-        if (system::is_root_process()) write_file_atomic(out, format_file(settings, done, system.field()));
+        if (system::is_root_process())
+          write_file_atomic(out, format_file(settings, done, system.field()));
         if (progress) progress(++finished, total, e);
       });
-  if (repaired < 0 || !todo.empty()) {  // a finished file has had its pass: resuming it changes nothing
+  if (repaired < 0 ||
+      !todo.empty()) {  // a finished file has had its pass: resuming it changes nothing
     repaired = repair_continuity(system, options, done);
     write_file_atomic(out, format_file(settings, done, system.field(), repaired));
   }

@@ -24,7 +24,7 @@ struct CollectOptions {
   teacher::TeacherOptions teacher;
   std::uint64_t seed = 1;  ///< recorded (the teacher itself is deterministic)
   int threads = 0;
-  bool resume = false;     ///< continue the file at `out` (its settings must match)
+  bool resume = false;  ///< continue the file at `out` (its settings must match)
 };
 
 struct CollectResult {
@@ -50,7 +50,8 @@ CollectResult collect(const system::System& system, const std::vector<std::array
                       const std::function<void(int, int, const teacher::Example&)>& progress = {});
 
 /// The settings line (without the leading "# ") for a run; exposed for tests.
-std::string collect_settings(const system::System& system, const std::vector<std::array<double, 2>>& holes,
+std::string collect_settings(const system::System& system,
+                             const std::vector<std::array<double, 2>>& holes,
                              const CollectOptions& options);
 
 }  // namespace mg::experiments

@@ -10,13 +10,13 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "experiments/wire.hpp"
 #include "selfteach/hindsight.hpp"
 #include "selfteach/planner.hpp"
 #include "selfteach/self_teach.hpp"
 #include "stats/gpr.hpp"
-#include "system/parallel.hpp"
-#include "experiments/wire.hpp"
 #include "system/distributed.hpp"
+#include "system/parallel.hpp"
 
 namespace mg::experiments {
 
@@ -39,19 +39,24 @@ int output_index(const learning::Model& m, std::string_view name) {
 
 }  // namespace
 
-void check_playable_model(const learning::Model& model, const std::string& source, const system::System* system) {
+void check_playable_model(const learning::Model& model, const std::string& source,
+                          const system::System* system) {
   for (const auto& n : model.input_names)
     if (n != "xi_x" && n != "xi_y" && n != "hole_x" && n != "hole_y")
-      throw InputError(fmt::format("{}: model input '{}' does not match a situation (expected xi_x, "
-                                   "xi_y, hole_x or hole_y)", source, n));
+      throw InputError(
+          fmt::format("{}: model input '{}' does not match a situation (expected xi_x, "
+                      "xi_y, hole_x or hole_y)",
+                      source, n));
   if (output_index(model, "angle") < 0)
     throw InputError(fmt::format("{}: the model has no output 'angle' (outputs: {})", source,
                                  fmt::join(model.output_names, ", ")));
   if (output_index(model, "speed") < 0 && model.fixed_value("speed") == nullptr)
-    throw InputError(fmt::format("{}: the model has neither an output 'speed' nor a fixed speed", source));
+    throw InputError(
+        fmt::format("{}: the model has neither an output 'speed' nor a fixed speed", source));
   if (const double* v = model.fixed_value("speed")) {
     if (!std::isfinite(*v) || !(*v > 0.0))
-      throw InputError(fmt::format("{}: fixed.speed: expected a club speed > 0 m/s, got {}", source, *v));
+      throw InputError(
+          fmt::format("{}: fixed.speed: expected a club speed > 0 m/s, got {}", source, *v));
     if (system) system->check_speed(*v, source + ": fixed.speed");
   }
 }
@@ -86,7 +91,8 @@ void EvaluateOptions::validate() const {
   if (!(perception_noise >= 0.0 && perception_noise <= 0.1))
     throw InputError(fmt::format("perception noise: expected 0..0.1 m, got {}", perception_noise));
   if (!(torque_noise >= 0.0 && torque_noise <= 0.1))
-    throw InputError(fmt::format("torque noise: expected 0..0.1 of the limits, got {}", torque_noise));
+    throw InputError(
+        fmt::format("torque noise: expected 0..0.1 of the limits, got {}", torque_noise));
 }
 
 Evaluation evaluate_model(const system::System& system, const learning::Model& model,
@@ -94,7 +100,10 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
                           const std::function<void(int, int)>& progress) {
   check_playable_model(model, "model", &system);
   return evaluate_policy(
-      system, [&](const std::vector<std::array<double, 2>>& holes) { return predict_hits(model, system.field(), holes); },
+      system,
+      [&](const std::vector<std::array<double, 2>>& holes) {
+        return predict_hits(model, system.field(), holes);
+      },
       region, options, progress);
 }
 
@@ -114,7 +123,8 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
     }
   const auto predictions = policy(perceived);
   if (predictions.size() != holes.size())
-    throw Error(fmt::format("policy: {} predictions for {} situations", predictions.size(), holes.size()));
+    throw Error(
+        fmt::format("policy: {} predictions for {} situations", predictions.size(), holes.size()));
   Evaluation e;
   e.rows.resize(holes.size());
   const auto& c = system.config();
@@ -127,8 +137,8 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
         r.hole = holes[static_cast<std::size_t>(i)];
         r.predicted = predictions[static_cast<std::size_t>(i)];
         const double a = r.predicted.angle, v = r.predicted.speed;
-        r.in_envelope = std::isfinite(a) && std::isfinite(v) && a >= c.angle_min && a <= c.angle_max &&
-                        v >= c.speed_min && v <= c.speed_max;
+        r.in_envelope = std::isfinite(a) && std::isfinite(v) && a >= c.angle_min &&
+                        a <= c.angle_max && v >= c.speed_min && v <= c.speed_max;
         if (r.in_envelope) {
           control::FullPuttOptions po;
           po.torque_noise = options.torque_noise;  // (a plant may add its own: the seed is set)
@@ -161,12 +171,15 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
 namespace {
 
 LearningEvaluation evaluate_appending(const system::System& system, const learning::Model& model,
-                                      const field::Situations& region, const EvaluateOptions& options,
+                                      const field::Situations& region,
+                                      const EvaluateOptions& options,
                                       const std::function<void(int, int)>& progress);
 
-/// The residual way: prior = the model, a residual GP on the hindsight labels (selfteach/planner.hpp).
+/// The residual way: prior = the model, a residual GP on the hindsight labels
+/// (selfteach/planner.hpp).
 LearningEvaluation evaluate_residual(const system::System& system, const learning::Model& model,
-                                     const field::Situations& region, const EvaluateOptions& options,
+                                     const field::Situations& region,
+                                     const EvaluateOptions& options,
                                      const std::function<void(int, int)>& progress) {
   const auto& field = system.field();
   selfteach::HindsightRules rules;
@@ -209,8 +222,9 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       putts.push_back(selfteach::record_putt(r.hole, a, v, p));
       if (p.hit) {
-        const auto ls = selfteach::hindsight_labels(p.outcome.trajectory, r.hole, hole_radius, rolling_decel, region,
-                                                    margin, a, v, static_cast<int>(putts.size()) - 1, rules);
+        const auto ls = selfteach::hindsight_labels(p.outcome.trajectory, r.hole, hole_radius,
+                                                    rolling_decel, region, margin, a, v,
+                                                    static_cast<int>(putts.size()) - 1, rules);
         added = static_cast<int>(ls.size());
         labels.insert(labels.end(), ls.begin(), ls.end());
       }
@@ -233,12 +247,14 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
 }
 
 LearningEvaluation evaluate_appending(const system::System& system, const learning::Model& model,
-                                      const field::Situations& region, const EvaluateOptions& options,
+                                      const field::Situations& region,
+                                      const EvaluateOptions& options,
                                       const std::function<void(int, int)>& progress) {
   check_playable_model(model, "model", &system);
   if (model.method != learning::Method::kGpr || model.prior)
-    throw InputError(fmt::format("--learn append: needs a plain GPR model (a {} model keeps no training data to add to)",
-                                 model.prior ? "residual" : learning::method_name(model.method)));
+    throw InputError(fmt::format(
+        "--learn append: needs a plain GPR model (a {} model keeps no training data to add to)",
+        model.prior ? "residual" : learning::method_name(model.method)));
   options.validate();
   if (options.perception_noise > 0.0 || options.oracle)
     throw InputError("--learn: plays without perception noise and without the oracle");
@@ -279,12 +295,14 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
       control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       if (p.hit) {
-        const auto labels = selfteach::hindsight_labels(p.outcome.trajectory, r.hole, hole_radius, rolling_decel,
-                                                        region, margin, a, v, i, rules);
+        const auto labels =
+            selfteach::hindsight_labels(p.outcome.trajectory, r.hole, hole_radius, rolling_decel,
+                                        region, margin, a, v, i, rules);
         for (const auto& l : labels) {
           Eigen::VectorXd x(out.learned.num_inputs());
           for (int col = 0; col < out.learned.num_inputs(); ++col)
-            x(col) = field::situation_input(field, out.learned.input_names[static_cast<std::size_t>(col)], l.hole);
+            x(col) = field::situation_input(
+                field, out.learned.input_names[static_cast<std::size_t>(col)], l.hole);
           for (int o = 0; o < out.learned.num_outputs(); ++o) {
             stats::GpModel& gp = out.learned.gps[static_cast<std::size_t>(o)];
             Eigen::MatrixXd xs(gp.inputs.rows() + 1, gp.inputs.cols());
@@ -325,25 +343,28 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
 }  // namespace
 
 LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
-                                     const field::Situations& region, const EvaluateOptions& options,
+                                     const field::Situations& region,
+                                     const EvaluateOptions& options,
                                      const std::function<void(int, int)>& progress) {
   check_playable_model(model, "model", &system);
   options.validate();
   if (options.perception_noise > 0.0 || options.oracle)
     throw InputError("--learn: plays without perception noise and without the oracle");
-  return options.learn == LearnMode::kAppend ? evaluate_appending(system, model, region, options, progress)
-                                             : evaluate_residual(system, model, region, options, progress);
+  return options.learn == LearnMode::kAppend
+             ? evaluate_appending(system, model, region, options, progress)
+             : evaluate_residual(system, model, region, options, progress);
 }
 
 std::string evaluation_csv(const Evaluation& e, const field::Field& field) {
   std::vector<std::vector<double>> rows;
   for (const auto& r : e.rows)
     rows.push_back({r.hole[0], r.hole[1], r.hole[0] - field.tee[0], r.hole[1] - field.tee[1],
-                    r.predicted.angle, r.predicted.speed, r.predicted.angle_std, r.predicted.speed_std,
-                    r.in_envelope ? 1.0 : 0.0, r.sunk ? 1.0 : 0.0,
+                    r.predicted.angle, r.predicted.speed, r.predicted.angle_std,
+                    r.predicted.speed_std, r.in_envelope ? 1.0 : 0.0, r.sunk ? 1.0 : 0.0,
                     r.in_envelope ? r.outcome.closest_approach : 1e3, r.outcome.rest_position[0],
                     r.outcome.rest_position[1], r.oracle_found ? 1.0 : 0.0,
-                    static_cast<double>(r.oracle_full_putts), static_cast<double>(r.oracle_ball_putts)});
+                    static_cast<double>(r.oracle_full_putts),
+                    static_cast<double>(r.oracle_ball_putts)});
   for (auto& row : rows)
     for (auto& v : row)
       if (!std::isfinite(v)) v = 0.0;

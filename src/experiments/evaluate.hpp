@@ -43,20 +43,20 @@ struct EvaluateOptions {
   int situations = 30;
   std::uint64_t seed = 1;
   int threads = 0;
-  bool oracle = true;                  ///< also run the teacher on every situation
-  teacher::TeacherOptions teacher;     ///< for the oracle
+  bool oracle = true;               ///< also run the teacher on every situation
+  teacher::TeacherOptions teacher;  ///< for the oracle
   // --- Noise (issue 10). Zero: the run is unchanged, bit for bit.
   /// Std [m] of the perceived hole's and the perceived ball's position error, per axis (as the
   /// network vision feed adds): the robot chooses its putt for the xi it perceives.
   double perception_noise = 0.0;
   /// Execution noise: joint-torque disturbance std as a fraction of the limits (launch study).
   double torque_noise = 0.0;
-  std::uint64_t noise_seed = 1;        ///< situation i draws from derive_seed(noise_seed, i)
+  std::uint64_t noise_seed = 1;  ///< situation i draws from derive_seed(noise_seed, i)
   /// evaluate_learning: how new labels change the model.
   LearnMode learn = LearnMode::kResidual;
   /// evaluate_learning: situation counts after which the model as it stands is also kept.
   std::vector<int> learn_checkpoints;
-  void validate() const;               ///< InputError naming the field
+  void validate() const;  ///< InputError naming the field
 };
 
 struct SituationResult {
@@ -109,7 +109,8 @@ struct LearningEvaluation {
   std::vector<std::pair<int, learning::Model>> checkpoint_models;  ///< (situations played, model)
 };
 LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
-                                     const field::Situations& region, const EvaluateOptions& options,
+                                     const field::Situations& region,
+                                     const EvaluateOptions& options,
                                      const std::function<void(int, int)>& progress = {});
 
 /// CSV, one row per situation: hole_x,hole_y,xi_x,xi_y,angle,speed,angle_std,speed_std,

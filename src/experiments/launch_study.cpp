@@ -37,15 +37,19 @@ struct RunningStats {
 void LaunchStudyOptions::validate() const {
   if (angles_deg.empty()) throw InputError("launch study: angles: expected at least one angle");
   for (double a : angles_deg)
-    if (!std::isfinite(a)) throw InputError(fmt::format("launch study: angles: expected finite degrees, got {}", a));
+    if (!std::isfinite(a))
+      throw InputError(fmt::format("launch study: angles: expected finite degrees, got {}", a));
   if (hits < 1 || hits > 100000)
     throw InputError(fmt::format("launch study: hits: expected 1..100000 per angle, got {}", hits));
   if (!std::isfinite(speed) || speed <= 0.0)
     throw InputError(fmt::format("launch study: speed: expected > 0 m/s, got {}", speed));
   if (!std::isfinite(torque_noise) || torque_noise < 0.0 || torque_noise > 1.0)
-    throw InputError(fmt::format("launch study: torque noise: expected 0..1 (fraction of the torque limit), got {}", torque_noise));
+    throw InputError(fmt::format(
+        "launch study: torque noise: expected 0..1 (fraction of the torque limit), got {}",
+        torque_noise));
   if (!std::isfinite(placement_noise) || placement_noise < 0.0 || placement_noise > 0.05)
-    throw InputError(fmt::format("launch study: placement noise: expected 0..0.05 m, got {}", placement_noise));
+    throw InputError(
+        fmt::format("launch study: placement noise: expected 0..0.05 m, got {}", placement_noise));
 }
 
 std::vector<LaunchAngleSummary> summarize_launch_hits(const std::vector<double>& angles_deg,
@@ -113,10 +117,10 @@ LaunchStudyResult run_launch_study(const system::System& system, const LaunchStu
     h.faulted = r.faulted;
     h.rest_time = r.rest_time;
     if (!r.hit)
-      h.failure = r.hit_refused                                ? "refused"
+      h.failure = r.hit_refused                               ? "refused"
                   : r.rest_time >= putt.settle_timeout - 1e-9 ? "not at rest"
-                  : r.faulted                                  ? "fault"
-                                                               : "no contact";
+                  : r.faulted                                 ? "fault"
+                                                              : "no contact";
     if (r.hit) {
       h.club_angle = r.club.angle;
       h.club_speed = r.club.speed;
@@ -164,12 +168,12 @@ std::string launch_study_markdown(const LaunchStudyResult& result) {
       "club speed error std [m/s] | club speed error [%] | launch/club mean | launch/club std |\n"
       "|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const LaunchAngleSummary& s : result.summary) {
-    out += fmt::format("| {:g} | {}{} | {:+.3f} | {:.3f} | {:+.4f} | {:.4f} | {:+.2f} | {:.4f} | {:.4f} |\n",
-                       s.commanded_angle_deg, s.n,
-                       s.missed > 0 ? fmt::format(" ({} missed)", s.missed) : std::string(),
-                       s.mean_error_deg, s.std_error_deg, s.mean_club_speed_error,
-                       s.std_club_speed_error, s.mean_club_speed_error_pct,
-                       s.mean_launch_club_ratio, s.std_launch_club_ratio);
+    out += fmt::format(
+        "| {:g} | {}{} | {:+.3f} | {:.3f} | {:+.4f} | {:.4f} | {:+.2f} | {:.4f} | {:.4f} |\n",
+        s.commanded_angle_deg, s.n,
+        s.missed > 0 ? fmt::format(" ({} missed)", s.missed) : std::string(), s.mean_error_deg,
+        s.std_error_deg, s.mean_club_speed_error, s.std_club_speed_error,
+        s.mean_club_speed_error_pct, s.mean_launch_club_ratio, s.std_launch_club_ratio);
   }
   return out;
 }

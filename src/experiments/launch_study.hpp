@@ -19,9 +19,9 @@ namespace mg::experiments {
 
 struct LaunchStudyOptions {
   std::vector<double> angles_deg{-10.0, 0.0, 10.0};  ///< commanded hitting angles [deg]
-  int hits = 10;                                      ///< hits per angle
-  double speed = 1.0;                                 ///< commanded club speed [m/s]
-  double torque_noise = 0.01;     ///< joint-torque disturbance std / torque limit [-]
+  int hits = 10;                                     ///< hits per angle
+  double speed = 1.0;                                ///< commanded club speed [m/s]
+  double torque_noise = 0.01;      ///< joint-torque disturbance std / torque limit [-]
   double placement_noise = 0.001;  ///< ball placement std per axis [m]
   std::uint64_t seed = 1;
   std::array<double, 2> hole{2.0, 0.0};  ///< only the launch matters
@@ -39,15 +39,15 @@ struct LaunchHit {
   std::uint64_t seed = 0;        ///< the putt's noise seed
   bool hit = false;              ///< the club struck the ball (else the numbers below are NaN)
   std::array<double, 2> ball_start{0.0, 0.0};  ///< [m]
-  double club_angle = 0.0;       ///< [rad] face velocity direction at contact
-  double club_speed = 0.0;       ///< [m/s] face speed at contact
-  double launch_angle = 0.0;     ///< [rad] ball launch direction
-  double launch_speed = 0.0;     ///< [m/s] ball launch speed (horizontal)
-  double launch_error_deg = 0.0;      ///< launch angle - commanded angle [deg]
-  double club_speed_error = 0.0;      ///< club speed - commanded speed [m/s]
-  double launch_club_ratio = 0.0;     ///< launch speed / club speed [-]
-  bool faulted = false;          ///< a module fault was observed during the run
-  double rest_time = 0.0;        ///< [s] simulated time to reach the rest pose
+  double club_angle = 0.0;                     ///< [rad] face velocity direction at contact
+  double club_speed = 0.0;                     ///< [m/s] face speed at contact
+  double launch_angle = 0.0;                   ///< [rad] ball launch direction
+  double launch_speed = 0.0;                   ///< [m/s] ball launch speed (horizontal)
+  double launch_error_deg = 0.0;               ///< launch angle - commanded angle [deg]
+  double club_speed_error = 0.0;               ///< club speed - commanded speed [m/s]
+  double launch_club_ratio = 0.0;              ///< launch speed / club speed [-]
+  bool faulted = false;                        ///< a module fault was observed during the run
+  double rest_time = 0.0;                      ///< [s] simulated time to reach the rest pose
   /// Why the club did not strike the ball: "" (it did), "refused", "not at rest" (rest pose not
   /// reached within the settle timeout), "fault", "no contact".
   std::string failure;
@@ -60,8 +60,8 @@ struct LaunchAngleSummary {
   int missed = 0;  ///< hits that did not (refused, no contact)
   double mean_error_deg = 0.0;
   double std_error_deg = 0.0;
-  double mean_club_speed_error = 0.0;  ///< [m/s]
-  double std_club_speed_error = 0.0;   ///< [m/s]
+  double mean_club_speed_error = 0.0;      ///< [m/s]
+  double std_club_speed_error = 0.0;       ///< [m/s]
   double mean_club_speed_error_pct = 0.0;  ///< 100 * mean club speed error / commanded speed
   double mean_launch_club_ratio = 0.0;
   double std_launch_club_ratio = 0.0;
@@ -70,7 +70,7 @@ struct LaunchAngleSummary {
 struct LaunchStudyResult {
   LaunchStudyOptions options;
   std::string field;
-  std::vector<LaunchHit> hits;  ///< angle-major, hit-minor
+  std::vector<LaunchHit> hits;              ///< angle-major, hit-minor
   std::vector<LaunchAngleSummary> summary;  ///< one per angle, in the options' order
 };
 

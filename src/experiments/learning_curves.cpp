@@ -1,17 +1,17 @@
 #include "experiments/learning_curves.hpp"
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
+#include <functional>
 
 #include <fmt/format.h>
 
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "experiments/wire.hpp"
 #include "selfteach/crkr.hpp"
 #include "selfteach/self_teach.hpp"
-#include "experiments/wire.hpp"
 #include "system/distributed.hpp"
 #include "system/parallel.hpp"
 
@@ -19,21 +19,29 @@ namespace mg::experiments {
 
 std::string to_string(CurveLearner l) {
   switch (l) {
-    case CurveLearner::kSelfTeach: return "self-teach";
-    case CurveLearner::kTeacherGpr: return "teacher-gpr";
-    case CurveLearner::kCrkr: return "crkr";
-    case CurveLearner::kAdapt: return "adapt";
-    case CurveLearner::kAdaptPlay: return "adapt-play";
-    case CurveLearner::kAppend: return "append";
+    case CurveLearner::kSelfTeach:
+      return "self-teach";
+    case CurveLearner::kTeacherGpr:
+      return "teacher-gpr";
+    case CurveLearner::kCrkr:
+      return "crkr";
+    case CurveLearner::kAdapt:
+      return "adapt";
+    case CurveLearner::kAdaptPlay:
+      return "adapt-play";
+    case CurveLearner::kAppend:
+      return "append";
   }
   return "?";
 }
 
 CurveLearner parse_curve_learner(const std::string& name) {
-  for (CurveLearner l : {CurveLearner::kSelfTeach, CurveLearner::kTeacherGpr, CurveLearner::kCrkr, CurveLearner::kAdapt,
-                         CurveLearner::kAdaptPlay, CurveLearner::kAppend})
+  for (CurveLearner l : {CurveLearner::kSelfTeach, CurveLearner::kTeacherGpr, CurveLearner::kCrkr,
+                         CurveLearner::kAdapt, CurveLearner::kAdaptPlay, CurveLearner::kAppend})
     if (to_string(l) == name) return l;
-  throw InputError(fmt::format("--learner: expected self-teach, teacher-gpr, crkr, adapt, adapt-play or append, got '{}'", name));
+  throw InputError(fmt::format(
+      "--learner: expected self-teach, teacher-gpr, crkr, adapt, adapt-play or append, got '{}'",
+      name));
 }
 
 bool needs_prior(CurveLearner l) {
@@ -43,13 +51,19 @@ bool needs_prior(CurveLearner l) {
 void CurveOptions::validate() const {
   if (checkpoints.empty()) throw InputError("learning curves: no checkpoints");
   for (int c : checkpoints)
-    if (c < 0 || c > 100000) throw InputError(fmt::format("learning curves: checkpoint {}: expected 0..100000", c));
-  if (checkpoints.back() < 1) throw InputError("learning curves: the last checkpoint must be >= 1 putt");
-  if (std::adjacent_find(checkpoints.begin(), checkpoints.end(), std::greater_equal<int>()) != checkpoints.end())
-    throw InputError("learning curves: checkpoints must be strictly increasing (each a different putt count)");
-  if (seeds < 1 || seeds > 1000) throw InputError(fmt::format("learning curves: seeds: expected 1..1000, got {}", seeds));
+    if (c < 0 || c > 100000)
+      throw InputError(fmt::format("learning curves: checkpoint {}: expected 0..100000", c));
+  if (checkpoints.back() < 1)
+    throw InputError("learning curves: the last checkpoint must be >= 1 putt");
+  if (std::adjacent_find(checkpoints.begin(), checkpoints.end(), std::greater_equal<int>()) !=
+      checkpoints.end())
+    throw InputError(
+        "learning curves: checkpoints must be strictly increasing (each a different putt count)");
+  if (seeds < 1 || seeds > 1000)
+    throw InputError(fmt::format("learning curves: seeds: expected 1..1000, got {}", seeds));
   if (situations < 1 || situations > 100000)
-    throw InputError(fmt::format("learning curves: situations: expected 1..100000, got {}", situations));
+    throw InputError(
+        fmt::format("learning curves: situations: expected 1..100000, got {}", situations));
 }
 
 namespace {
@@ -150,12 +164,15 @@ CurveRun teacher_run(const system::System& sys, const field::Situations& region,
       d.source = "teacher examples";
       d.input_names = inputs;
       d.output_names = outputs;
-      d.inputs.resize(static_cast<Eigen::Index>(use.size()), static_cast<Eigen::Index>(inputs.size()));
-      d.outputs.resize(static_cast<Eigen::Index>(use.size()), static_cast<Eigen::Index>(outputs.size()));
+      d.inputs.resize(static_cast<Eigen::Index>(use.size()),
+                      static_cast<Eigen::Index>(inputs.size()));
+      d.outputs.resize(static_cast<Eigen::Index>(use.size()),
+                       static_cast<Eigen::Index>(outputs.size()));
       for (std::size_t i = 0; i < use.size(); ++i) {
         const auto r = static_cast<Eigen::Index>(i);
         for (std::size_t c2 = 0; c2 < inputs.size(); ++c2)
-          d.inputs(r, static_cast<Eigen::Index>(c2)) = field::situation_input(sys.field(), inputs[c2], use[i]->hole);
+          d.inputs(r, static_cast<Eigen::Index>(c2)) =
+              field::situation_input(sys.field(), inputs[c2], use[i]->hole);
         d.outputs(r, 0) = use[i]->angle;
         if (outputs.size() > 1) d.outputs(r, 1) = use[i]->speed;
       }
@@ -203,7 +220,8 @@ std::vector<CurveRun> learning_curves(const system::System& system, const field:
                                       const std::function<void(int, int)>& progress) {
   options.validate();
   if (needs_prior(learner) && !options.prior)
-    throw InputError(fmt::format("learning curves: --learner {} needs a prior model (--prior)", to_string(learner)));
+    throw InputError(fmt::format("learning curves: --learner {} needs a prior model (--prior)",
+                                 to_string(learner)));
   std::vector<CurveRun> runs(static_cast<std::size_t>(options.seeds));
   int done = 0;
   // Runs are independent: over MPI processes too (the same bits as one process).
@@ -212,12 +230,24 @@ std::vector<CurveRun> learning_curves(const system::System& system, const field:
       [&](int i, system::SystemData&) {
         CurveRun r;
         switch (learner) {
-          case CurveLearner::kSelfTeach: r = self_teach_run(system, region, i, options, false); break;
-          case CurveLearner::kTeacherGpr: r = teacher_run(system, region, i, options); break;
-          case CurveLearner::kCrkr: r = crkr_run(system, region, i, options); break;
-          case CurveLearner::kAdapt: r = self_teach_run(system, region, i, options, true); break;
-          case CurveLearner::kAdaptPlay: r = play_learning_run(system, region, i, options, LearnMode::kResidual); break;
-          case CurveLearner::kAppend: r = play_learning_run(system, region, i, options, LearnMode::kAppend); break;
+          case CurveLearner::kSelfTeach:
+            r = self_teach_run(system, region, i, options, false);
+            break;
+          case CurveLearner::kTeacherGpr:
+            r = teacher_run(system, region, i, options);
+            break;
+          case CurveLearner::kCrkr:
+            r = crkr_run(system, region, i, options);
+            break;
+          case CurveLearner::kAdapt:
+            r = self_teach_run(system, region, i, options, true);
+            break;
+          case CurveLearner::kAdaptPlay:
+            r = play_learning_run(system, region, i, options, LearnMode::kResidual);
+            break;
+          case CurveLearner::kAppend:
+            r = play_learning_run(system, region, i, options, LearnMode::kAppend);
+            break;
         }
         r.learner = learner;
         r.run = i;
@@ -234,8 +264,8 @@ std::string curves_csv(const std::vector<CurveRun>& runs) {
   std::string out = "learner,run,putts,sunk,situations,success\n";
   for (const auto& r : runs)
     for (std::size_t k = 0; k < r.putts.size(); ++k)
-      out += fmt::format("{},{},{},{},{},{}\n", to_string(r.learner), r.run, r.putts[k], r.sunk[k], r.situations,
-                         static_cast<double>(r.sunk[k]) / r.situations);
+      out += fmt::format("{},{},{},{},{},{}\n", to_string(r.learner), r.run, r.putts[k], r.sunk[k],
+                         r.situations, static_cast<double>(r.sunk[k]) / r.situations);
   return out;
 }
 

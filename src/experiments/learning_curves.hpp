@@ -8,7 +8,8 @@
 ///                 GPR on the examples found so far;
 ///   crkr          Cost-regularized Kernel Regression (selfteach/crkr.hpp).
 /// Adaptation from a prior model (CurveOptions::prior; docs/reality.md):
-///   adapt         self-teaching from the prior (self-teach --prior): the robot chooses its targets,
+///   adapt         self-teaching from the prior (self-teach --prior): the robot chooses its
+///   targets,
 ///                 a residual over the prior learns;
 ///   adapt-play    learning while playing random situations of the region (evaluate --learn), the
 ///                 residual way;
@@ -31,7 +32,8 @@
 namespace mg::experiments {
 
 enum class CurveLearner { kSelfTeach, kTeacherGpr, kCrkr, kAdapt, kAdaptPlay, kAppend };
-std::string to_string(CurveLearner l);  ///< "self-teach", "teacher-gpr", "crkr", "adapt", "adapt-play", "append"
+std::string to_string(
+    CurveLearner l);  ///< "self-teach", "teacher-gpr", "crkr", "adapt", "adapt-play", "append"
 /// Inverse of to_string; throws InputError listing the choices.
 CurveLearner parse_curve_learner(const std::string& name);
 /// True for the learners that start from CurveOptions::prior.
@@ -39,23 +41,24 @@ bool needs_prior(CurveLearner l);
 
 struct CurveOptions {
   std::vector<int> checkpoints{10, 25, 50, 100, 150};  ///< putts spent
-  int seeds = 10;                    ///< runs (seed 1..seeds derived from `seed`)
-  int situations = 100;              ///< test situations per checkpoint
+  int seeds = 10;                                      ///< runs (seed 1..seeds derived from `seed`)
+  int situations = 100;                                ///< test situations per checkpoint
   std::uint64_t seed = 1;
   std::uint64_t test_seed = 7;
   int threads = 0;
-  teacher::TeacherOptions teacher;   ///< teacher-gpr; adapt-play and append: the strategy's arrival speed
+  teacher::TeacherOptions
+      teacher;  ///< teacher-gpr; adapt-play and append: the strategy's arrival speed
   std::shared_ptr<const learning::Model> prior;  ///< adapt, adapt-play, append
   void validate() const;
 };
 
 struct CurveRun {
   CurveLearner learner = CurveLearner::kSelfTeach;
-  int run = 0;                       ///< 0..seeds-1
-  std::vector<int> putts;            ///< the checkpoints
-  std::vector<int> sunk;             ///< test situations sunk at each (0 without a model yet)
+  int run = 0;             ///< 0..seeds-1
+  std::vector<int> putts;  ///< the checkpoints
+  std::vector<int> sunk;   ///< test situations sunk at each (0 without a model yet)
   int situations = 0;
-  int examples = 0;                  ///< teacher-gpr: examples found within the last checkpoint
+  int examples = 0;  ///< teacher-gpr: examples found within the last checkpoint
 };
 
 std::vector<CurveRun> learning_curves(const system::System& system, const field::Situations& region,

@@ -18,10 +18,9 @@ std::string pct(double r) { return std::isfinite(r) ? fmt::format("{:.0f} %", 10
 
 }  // namespace
 
-std::map<std::string, std::string> real_robot_rows(const control::ModuleConfig& config, const std::string& name,
-                                                   const field::Situations& region,
-                                                   const std::map<std::string, learning::Model>& models,
-                                                   const RealRobotOptions& opt) {
+std::map<std::string, std::string> real_robot_rows(
+    const control::ModuleConfig& config, const std::string& name, const field::Situations& region,
+    const std::map<std::string, learning::Model>& models, const RealRobotOptions& opt) {
   std::map<std::string, std::string> md;
   const field::Field belief = field::load_field(config.field);
   const system::System real(config, belief, opt.plant);
@@ -46,16 +45,20 @@ std::map<std::string, std::string> real_robot_rows(const control::ModuleConfig& 
     so.prior = std::make_shared<const learning::Model>(nominal);
     const auto adapted = selfteach::self_teach(real, region, so);
     eo.oracle = false;
-    const Evaluation after = evaluate_model(real, adapted.trained ? adapted.model : nominal, region, eo);
+    const Evaluation after =
+        evaluate_model(real, adapted.trained ? adapted.model : nominal, region, eo);
     const double thesis = opt.thesis ? opt.thesis(name, method) : NAN;
-    md["rows"] += fmt::format("| {} | {} | {} of {} | {} of {} ({} sank while adapting) | {} | {} |\n", name, method,
-                              before.sunk, opt.attempts, after.sunk, opt.attempts, adapted.sunk,
-                              pct(before.oracle_ceiling), pct(thesis));
-    csv += fmt::format("{},{},nominal,{},{},{},{}\n", name, method, opt.attempts, before.sunk, before.oracle_found,
-                       std::isfinite(thesis) ? fmt::format("{}", thesis) : "");
-    csv += fmt::format("{},{},adapted-{},{},{},,\n", name, method, opt.adaptation_putts, opt.attempts, after.sunk);
-    opt.say(fmt::format("{}: real-robot stand-in, {}: nominal {} of {}, after {} own putts {} of {}", name, method,
-                        before.sunk, opt.attempts, opt.adaptation_putts, after.sunk, opt.attempts));
+    md["rows"] +=
+        fmt::format("| {} | {} | {} of {} | {} of {} ({} sank while adapting) | {} | {} |\n", name,
+                    method, before.sunk, opt.attempts, after.sunk, opt.attempts, adapted.sunk,
+                    pct(before.oracle_ceiling), pct(thesis));
+    csv += fmt::format("{},{},nominal,{},{},{},{}\n", name, method, opt.attempts, before.sunk,
+                       before.oracle_found, std::isfinite(thesis) ? fmt::format("{}", thesis) : "");
+    csv += fmt::format("{},{},adapted-{},{},{},,\n", name, method, opt.adaptation_putts,
+                       opt.attempts, after.sunk);
+    opt.say(fmt::format(
+        "{}: real-robot stand-in, {}: nominal {} of {}, after {} own putts {} of {}", name, method,
+        before.sunk, opt.attempts, opt.adaptation_putts, after.sunk, opt.attempts));
   }
   write_file_atomic(opt.csv_path(name + "_real_robot.csv"), csv);
 
@@ -76,17 +79,22 @@ std::map<std::string, std::string> real_robot_rows(const control::ModuleConfig& 
   const auto s = summarize_adaptation(rows);
   std::string curve = "method,x,median,p10,p90\n";
   for (std::size_t k = 0; k < s.putts.size(); ++k) {
-    curve += fmt::format("adapt (GPR prior),{},{},{},{}\n", s.putts[k], s.median[k], s.q10[k], s.q90[k]);
-    md["curves"] += fmt::format("| {} | {} | {:.0f} % | {:.0f}-{:.0f} % | {:.0f} % | {} | {} | {} of {} |\n", name,
-                                s.putts[k], 100 * s.median[k], 100 * s.q10[k], 100 * s.q90[k], 100 * s.worst[k],
-                                pct(s.of_ceiling_median[k]), pct(s.of_ceiling_worst[k]), s.plants_at_goal[k],
-                                rows.size());
+    curve +=
+        fmt::format("adapt (GPR prior),{},{},{},{}\n", s.putts[k], s.median[k], s.q10[k], s.q90[k]);
+    md["curves"] += fmt::format(
+        "| {} | {} | {:.0f} % | {:.0f}-{:.0f} % | {:.0f} % | {} | {} | {} of {} |\n", name,
+        s.putts[k], 100 * s.median[k], 100 * s.q10[k], 100 * s.q90[k], 100 * s.worst[k],
+        pct(s.of_ceiling_median[k]), pct(s.of_ceiling_worst[k]), s.plants_at_goal[k], rows.size());
   }
   write_file_atomic(opt.csv_path(name + "_adaptation_curve.csv"), curve);
-  opt.plot(fmt::format("learning-curve {} {} --xlabel {} --title {}", shell_quote(opt.csv_path(name + "_adaptation_curve.csv")),
-                       shell_quote(opt.fig_path(name + "_adaptation.png")), shell_quote("own putts on the plant (0: the nominal model)"),
-                       shell_quote(fmt::format("{}: success on {} test situations, median and 10-90 % over {} random plants", name,
-                                               ao.situations, rows.size()))));
+  opt.plot(
+      fmt::format("learning-curve {} {} --xlabel {} --title {}",
+                  shell_quote(opt.csv_path(name + "_adaptation_curve.csv")),
+                  shell_quote(opt.fig_path(name + "_adaptation.png")),
+                  shell_quote("own putts on the plant (0: the nominal model)"),
+                  shell_quote(fmt::format(
+                      "{}: success on {} test situations, median and 10-90 % over {} random plants",
+                      name, ao.situations, rows.size()))));
   md["figures"] += fmt::format("![{} adaptation](figures/{}_adaptation.png)\n", name, name);
   opt.say(fmt::format("{}: adaptation curves over {} plants done", name, rows.size()));
   return md;

@@ -19,8 +19,8 @@ struct RealRobotOptions {
   bool quick = false;
   int threads = 0;
   std::uint64_t seed = 1;
-  plant::Plant plant;       ///< the stand-in for the real arm and lane
-  int attempts = 10;        ///< the thesis's real-robot attempt count
+  plant::Plant plant;  ///< the stand-in for the real arm and lane
+  int attempts = 10;   ///< the thesis's real-robot attempt count
   int adaptation_putts = 10;
   /// The thesis's real-robot success ratio of (field, method), NaN if none.
   std::function<double(const std::string&, const std::string&)> thesis;
@@ -32,9 +32,8 @@ struct RealRobotOptions {
 
 /// Markdown rows by table: "rows" (the table 6.5-like rows), "curves" (adaptation curves) and
 /// "figures". `models`: the nominal teacher-trained learners by method (gpr, gmr used).
-std::map<std::string, std::string> real_robot_rows(const control::ModuleConfig& config, const std::string& name,
-                                                   const field::Situations& region,
-                                                   const std::map<std::string, learning::Model>& models,
-                                                   const RealRobotOptions& options);
+std::map<std::string, std::string> real_robot_rows(
+    const control::ModuleConfig& config, const std::string& name, const field::Situations& region,
+    const std::map<std::string, learning::Model>& models, const RealRobotOptions& options);
 
 }  // namespace mg::experiments

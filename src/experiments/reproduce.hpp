@@ -13,17 +13,18 @@
 namespace mg::experiments {
 
 struct ReproduceOptions {
-  bool quick = false;        ///< fewer situations and seeds (under 10 min on 2 cores)
+  bool quick = false;  ///< fewer situations and seeds (under 10 min on 2 cores)
   std::filesystem::path out = "out/reproduce";
   int threads = 0;
   std::uint64_t seed = 1;
-  bool collect = false;      ///< collect the data sets with the teacher instead of reading them
-  std::filesystem::path datasets;  ///< folder of <field>.csv and <field>-validation.csv (default: shipped)
+  bool collect = false;  ///< collect the data sets with the teacher instead of reading them
+  std::filesystem::path
+      datasets;  ///< folder of <field>.csv and <field>-validation.csv (default: shipped)
   std::vector<std::string> fields{"flat", "multiple-hills", "regular-hill", "arctan"};
-  std::string config;        ///< module config YAML (empty: defaults)
+  std::string config;  ///< module config YAML (empty: defaults)
   std::string revision = "unknown";
-  bool plots = true;         ///< draw the figures (matplotlib)
-  bool beyond = true;        ///< the "beyond the thesis" part: self-teaching, baselines, noise
+  bool plots = true;   ///< draw the figures (matplotlib)
+  bool beyond = true;  ///< the "beyond the thesis" part: self-teaching, baselines, noise
   /// The real-robot rows (flat, multiple-hills): this plant stands in for the real WAM
   /// (default data/plants/real-wam.yaml); skipped with `real_robot` false.
   bool real_robot = true;

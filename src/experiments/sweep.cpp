@@ -16,7 +16,8 @@ std::vector<double> linspace(double lo, double hi, int n) {
 std::vector<SweepCell> run_sweep(const system::System& system, const SweepOptions& options,
                                  const std::function<void(int, int)>& progress) {
   field::check_hole_position(system.field(), options.hole);
-  const int na = static_cast<int>(options.angles.size()), ns = static_cast<int>(options.speeds.size());
+  const int na = static_cast<int>(options.angles.size()),
+            ns = static_cast<int>(options.speeds.size());
   std::vector<SweepCell> cells(static_cast<std::size_t>(na * ns));
   int done = 0;
   system::distributed_for(
@@ -29,7 +30,8 @@ std::vector<SweepCell> run_sweep(const system::System& system, const SweepOption
           c.outcome = system::ball_putt(system, data, options.hole, c.angle, c.speed);
           return;
         }
-        const control::FullPuttResult r = system::arm_putt(system, data, options.hole, c.angle, c.speed);
+        const control::FullPuttResult r =
+            system::arm_putt(system, data, options.hole, c.angle, c.speed);
         c.hit = r.hit && !r.hit_refused;
         c.outcome = r.outcome;
         if (!c.hit) c.outcome.rest_position = system.field().tee;

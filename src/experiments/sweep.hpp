@@ -18,7 +18,7 @@ struct SweepOptions {
   std::vector<double> angles;        ///< [rad] (club hitting angle, or ball launch angle)
   std::vector<double> speeds;        ///< [m/s] (club speed, or ball launch speed)
   bool ball_only = false;
-  int threads = 0;                   ///< 0: all cores
+  int threads = 0;  ///< 0: all cores
 };
 
 struct SweepCell {

@@ -13,11 +13,12 @@ namespace mg::system {
 
 template <>
 struct Wire<teacher::Example> {
-  static_assert(sizeof(teacher::Example) == 88, "teacher::Example changed: update Wire<teacher::Example>");
+  static_assert(sizeof(teacher::Example) == 88,
+                "teacher::Example changed: update Wire<teacher::Example>");
   template <typename A>
   static void fields(A& a, teacher::Example& e) {
-    a(e.hole, e.found, e.angle, e.speed, e.margin_angle, e.margin_speed, e.launch_angle, e.launch_speed,
-      e.approach_speed, e.full_putts, e.ball_putts);
+    a(e.hole, e.found, e.angle, e.speed, e.margin_angle, e.margin_speed, e.launch_angle,
+      e.launch_speed, e.approach_speed, e.full_putts, e.ball_putts);
   }
 };
 
@@ -32,7 +33,8 @@ struct Wire<experiments::SweepCell> {
 
 template <>
 struct Wire<experiments::Prediction> {
-  static_assert(sizeof(experiments::Prediction) == 32, "Prediction changed: update Wire<Prediction>");
+  static_assert(sizeof(experiments::Prediction) == 32,
+                "Prediction changed: update Wire<Prediction>");
   template <typename A>
   static void fields(A& a, experiments::Prediction& p) {
     a(p.angle, p.speed, p.angle_std, p.speed_std);
@@ -55,9 +57,9 @@ struct Wire<experiments::LaunchHit> {
   static_assert(sizeof(experiments::LaunchHit) == 160, "LaunchHit changed: update Wire<LaunchHit>");
   template <typename A>
   static void fields(A& a, experiments::LaunchHit& h) {
-    a(h.angle_index, h.hit_index, h.commanded_angle_deg, h.commanded_speed, h.seed, h.hit, h.ball_start,
-      h.club_angle, h.club_speed, h.launch_angle, h.launch_speed, h.launch_error_deg, h.club_speed_error,
-      h.launch_club_ratio, h.faulted, h.rest_time, h.failure);
+    a(h.angle_index, h.hit_index, h.commanded_angle_deg, h.commanded_speed, h.seed, h.hit,
+      h.ball_start, h.club_angle, h.club_speed, h.launch_angle, h.launch_speed, h.launch_error_deg,
+      h.club_speed_error, h.launch_club_ratio, h.faulted, h.rest_time, h.failure);
   }
 };
 

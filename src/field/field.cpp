@@ -75,7 +75,8 @@ SurfaceTerm parse_term(MapReader r, const Field& field, const std::filesystem::p
     }
   } else {
     r.fail(r.full("type"), fmt::format("unknown surface type '{}' (expected plane, bump, hill, "
-                                       "arctan, heightmap or flatten)", type));
+                                       "arctan, heightmap or flatten)",
+                                       type));
   }
   r.finish();
   return term;
@@ -114,16 +115,23 @@ Situations parse_situations(MapReader r, const Field& field) {
       s.points.push_back(l.to_numbers<2>(pts[i], fmt::format("{}[{}]", l.full("points"), i)));
     l.finish();
   }
-  if (shapes != 1) r.fail(r.full("(shape)"), fmt::format("expected exactly one of line, grid, box, list; got {}", shapes));
+  if (shapes != 1)
+    r.fail(r.full("(shape)"),
+           fmt::format("expected exactly one of line, grid, box, list; got {}", shapes));
   if (r.has("outputs")) {
     const auto outputs = r.texts("outputs");
-    if (outputs == std::vector<std::string>{"angle"}) s.learn_speed = false;
-    else if (outputs == std::vector<std::string>{"angle", "speed"}) s.learn_speed = true;
-    else r.fail(r.full("outputs"), "expected [angle] or [angle, speed]");
+    if (outputs == std::vector<std::string>{"angle"})
+      s.learn_speed = false;
+    else if (outputs == std::vector<std::string>{"angle", "speed"})
+      s.learn_speed = true;
+    else
+      r.fail(r.full("outputs"), "expected [angle] or [angle, speed]");
   }
   s.speed = r.number("speed", 0.0);
-  if (s.learn_speed && r.has("speed")) r.fail(r.full("speed"), "only for outputs: [angle] (the fixed club speed)");
-  if (!s.learn_speed && !r.has("speed")) r.fail(r.full("speed"), "missing (required with outputs: [angle])");
+  if (s.learn_speed && r.has("speed"))
+    r.fail(r.full("speed"), "only for outputs: [angle] (the fixed club speed)");
+  if (!s.learn_speed && !r.has("speed"))
+    r.fail(r.full("speed"), "missing (required with outputs: [angle])");
   s.strategy = r.text("strategy", s.strategy);
   r.finish();
   s.validate(field);
@@ -137,7 +145,8 @@ void Field::validate() const {
   for (double b : bounds) require_finite(where("lane.bounds"), b);
   if (!(bounds[1] - bounds[0] >= 0.5 && bounds[3] - bounds[2] >= 0.2))
     throw InputError(fmt::format("{}: expected a lane of at least 0.5 x 0.2 m, got {} x {} m",
-                                 where("lane.bounds"), bounds[1] - bounds[0], bounds[3] - bounds[2]));
+                                 where("lane.bounds"), bounds[1] - bounds[0],
+                                 bounds[3] - bounds[2]));
   if (bounds[1] - bounds[0] > 50 || bounds[3] - bounds[2] > 50)
     throw InputError(fmt::format("{}: expected a lane of at most 50 x 50 m", where("lane.bounds")));
   require_in_range(where("lane.cell_size"), cell_size, 0.005, 0.25);
@@ -168,12 +177,16 @@ void Field::validate() const {
       const double y = bounds[2] + (bounds[3] - bounds[2]) * j / n;
       const double z = height(x, y);
       if (!std::isfinite(z) || std::abs(z) > 10.0)
-        throw InputError(fmt::format("{}: height {} at ({:.3f}, {:.3f}) is not a finite value "
-                                     "within +-10 m", where("surface"), z, x, y));
+        throw InputError(
+            fmt::format("{}: height {} at ({:.3f}, {:.3f}) is not a finite value "
+                        "within +-10 m",
+                        where("surface"), z, x, y));
       const auto g = surface.gradient(x, y);
       if (std::hypot(g[0], g[1]) > 1.0)
-        throw InputError(fmt::format("{}: slope {:.2f} at ({:.3f}, {:.3f}) is steeper than 45 "
-                                     "degrees", where("surface"), std::hypot(g[0], g[1]), x, y));
+        throw InputError(
+            fmt::format("{}: slope {:.2f} at ({:.3f}, {:.3f}) is steeper than 45 "
+                        "degrees",
+                        where("surface"), std::hypot(g[0], g[1]), x, y));
     }
 }
 
@@ -181,18 +194,20 @@ void check_hole_position(const Field& field, std::array<double, 2> p) {
   const double r = 0.5 * field.hole.diameter;
   const auto& b = field.bounds;
   if (!std::isfinite(p[0]) || !std::isfinite(p[1]))
-    throw InputError(fmt::format("hole position: expected finite numbers, got ({}, {})", p[0], p[1]));
+    throw InputError(
+        fmt::format("hole position: expected finite numbers, got ({}, {})", p[0], p[1]));
   if (p[0] - r < b[0] || p[0] + r > b[1] || p[1] - r < b[2] || p[1] + r > b[3])
-    throw InputError(fmt::format(
-        "hole position: ({}, {}) puts the hole outside the lane of field '{}' "
-        "(x in [{}, {}], y in [{}, {}], hole radius {})",
-        p[0], p[1], field.name, b[0], b[1], b[2], b[3], r));
+    throw InputError(
+        fmt::format("hole position: ({}, {}) puts the hole outside the lane of field '{}' "
+                    "(x in [{}, {}], y in [{}, {}], hole radius {})",
+                    p[0], p[1], field.name, b[0], b[1], b[2], b[3], r));
   // A ball resting in or over the cup before the stroke is not a putt.
   const double gap = std::hypot(p[0] - field.tee[0], p[1] - field.tee[1]);
   if (gap < r + field.ball.radius)
-    throw InputError(fmt::format("hole position: ({}, {}) puts the hole on the tee ({}, {}) of field '{}' "
-                                 "(they must be at least {:.4g} m apart)",
-                                 p[0], p[1], field.tee[0], field.tee[1], field.name, r + field.ball.radius));
+    throw InputError(
+        fmt::format("hole position: ({}, {}) puts the hole on the tee ({}, {}) of field '{}' "
+                    "(they must be at least {:.4g} m apart)",
+                    p[0], p[1], field.tee[0], field.tee[1], field.name, r + field.ball.radius));
 }
 
 Field parse_field(std::string_view yaml_text, const std::string& source,
@@ -248,8 +263,8 @@ Field parse_field(std::string_view yaml_text, const std::string& source,
     for (std::size_t i = 0; i < surface.size(); ++i)
       f.surface.terms.push_back(
           parse_term(MapReader(surface[i], source, fmt::format("surface[{}]", i)), f, base_dir));
-    f.situations = r.has("situations") ? parse_situations(r.child("situations"), f)
-                                       : default_situations(f);
+    f.situations =
+        r.has("situations") ? parse_situations(r.child("situations"), f) : default_situations(f);
     r.finish();
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}: malformed field: {}", source, e.what()));
@@ -261,8 +276,8 @@ Field parse_field(std::string_view yaml_text, const std::string& source,
 Field load_field(std::string_view name_or_path) {
   const std::string arg(name_or_path);
   if (arg.empty()) throw InputError("field: expected a name or a path, got ''");
-  const bool is_path = arg.find('/') != std::string::npos || arg.ends_with(".yaml") ||
-                       arg.ends_with(".yml");
+  const bool is_path =
+      arg.find('/') != std::string::npos || arg.ends_with(".yaml") || arg.ends_with(".yml");
   std::filesystem::path path;
   if (is_path) {
     path = arg;
@@ -270,8 +285,10 @@ Field load_field(std::string_view name_or_path) {
     path = data_dir() / "fields" / (arg + ".yaml");
     std::error_code ec;
     if (!std::filesystem::exists(path, ec))  // ec: a name too long is unknown, not a crash
-      throw InputError(fmt::format("field: unknown field '{}' (shipped: {}; give a path for your "
-                                   "own file)", shown_path(arg), fmt::join(list_shipped_fields(), ", ")));
+      throw InputError(
+          fmt::format("field: unknown field '{}' (shipped: {}; give a path for your "
+                      "own file)",
+                      shown_path(arg), fmt::join(list_shipped_fields(), ", ")));
   }
   return parse_field(read_text_file(path), path.string(), path.parent_path());
 }

@@ -30,22 +30,22 @@ struct Ball {
 
 /// The lane's borders (walls) around `bounds`.
 struct Borders {
-  double height = 0.06;       ///< [m] above the highest point of the surface next to them
-  double thickness = 0.04;    ///< [m]
-  double restitution = 0.6;   ///< [-] normal speed after / before a head-on bounce
+  double height = 0.06;      ///< [m] above the highest point of the surface next to them
+  double thickness = 0.04;   ///< [m]
+  double restitution = 0.6;  ///< [-] normal speed after / before a head-on bounce
 };
 
 struct Field {
   std::string name;
   std::string description;
-  std::string source;                           ///< file the field was read from
+  std::string source;                                  ///< file the field was read from
   std::array<double, 4> bounds{-0.3, 2.7, -0.6, 0.6};  ///< lane [x_min, x_max, y_min, y_max] [m]
-  double cell_size = 0.025;                     ///< heightfield grid spacing [m]
-  std::array<double, 2> tee{0.0, 0.0};          ///< ball start [m]
+  double cell_size = 0.025;                            ///< heightfield grid spacing [m]
+  std::array<double, 2> tee{0.0, 0.0};                 ///< ball start [m]
   Hole hole;
   Ball ball;
-  double rolling_resistance = 0.131;            ///< Penner's rho [-]: rolling decel (5/7) rho g
-  double sliding_friction = 0.3;                ///< ball-lane Coulomb friction while sliding [-]
+  double rolling_resistance = 0.131;  ///< Penner's rho [-]: rolling decel (5/7) rho g
+  double sliding_friction = 0.3;      ///< ball-lane Coulomb friction while sliding [-]
   Borders borders;
   Surface surface;
   Situations situations;  ///< where the hole may be (file section `situations`, or the default)

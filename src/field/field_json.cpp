@@ -8,25 +8,37 @@ namespace {
 
 struct TermToJson {
   nlohmann::json operator()(const PlaneTerm& t) const {
-    return {{"type", "plane"}, {"offset", t.offset}, {"slope_x", t.slope_x}, {"slope_y", t.slope_y}};
+    return {
+        {"type", "plane"}, {"offset", t.offset}, {"slope_x", t.slope_x}, {"slope_y", t.slope_y}};
   }
   nlohmann::json operator()(const BumpTerm& t) const {
     return {{"type", "bump"}, {"center", t.center}, {"height", t.height}, {"sigma", t.sigma}};
   }
   nlohmann::json operator()(const HillTerm& t) const {
-    return {{"type", "hill"}, {"crest", t.crest}, {"direction", t.direction},
-            {"height", t.height}, {"half_width", t.half_width}};
+    return {{"type", "hill"},
+            {"crest", t.crest},
+            {"direction", t.direction},
+            {"height", t.height},
+            {"half_width", t.half_width}};
   }
   nlohmann::json operator()(const ArctanTerm& t) const {
-    return {{"type", "arctan"}, {"center", t.center}, {"amplitude", t.amplitude},
-            {"scale_x", t.scale_x}, {"scale_y", t.scale_y}};
+    return {{"type", "arctan"},
+            {"center", t.center},
+            {"amplitude", t.amplitude},
+            {"scale_x", t.scale_x},
+            {"scale_y", t.scale_y}};
   }
   nlohmann::json operator()(const FlattenTerm& t) const {
-    return {{"type", "flatten"}, {"center", t.center}, {"radius", t.radius},
+    return {{"type", "flatten"},
+            {"center", t.center},
+            {"radius", t.radius},
             {"blend_radius", t.blend_radius}};
   }
   nlohmann::json operator()(const HeightmapTerm& t) const {
-    return {{"type", "heightmap"}, {"file", t.source}, {"bounds", t.bounds}, {"rows", t.rows},
+    return {{"type", "heightmap"},
+            {"file", t.source},
+            {"bounds", t.bounds},
+            {"rows", t.rows},
             {"cols", t.cols}};
   }
 };
@@ -60,7 +72,8 @@ nlohmann::json field_to_json(const Field& f) {
       {"rolling_resistance", f.rolling_resistance},
       {"sliding_friction", f.sliding_friction},
       {"borders",
-       {{"height", f.borders.height}, {"thickness", f.borders.thickness},
+       {{"height", f.borders.height},
+        {"thickness", f.borders.thickness},
         {"restitution", f.borders.restitution}}},
       {"height_range", {z_min, z_max}},
       {"surface", terms},

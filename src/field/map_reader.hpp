@@ -110,7 +110,8 @@ class MapReader {
   }
   template <std::size_t N>
   std::array<double, N> to_numbers(const YAML::Node& n, const std::string& what) const {
-    if (!n.IsSequence() || n.size() != N) fail(what, fmt::format("expected a list of {} numbers", N));
+    if (!n.IsSequence() || n.size() != N)
+      fail(what, fmt::format("expected a list of {} numbers", N));
     std::array<double, N> out{};
     for (std::size_t i = 0; i < N; ++i) out[i] = to_number(n[i], fmt::format("{}[{}]", what, i));
     return out;

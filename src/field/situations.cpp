@@ -14,7 +14,9 @@ namespace {
 
 constexpr int kMaxPoints = 10000;
 
-double lerp(double a, double b, int i, int n) { return n <= 1 ? 0.5 * (a + b) : a + (b - a) * i / (n - 1); }
+double lerp(double a, double b, int i, int n) {
+  return n <= 1 ? 0.5 * (a + b) : a + (b - a) * i / (n - 1);
+}
 
 std::vector<std::string> split(const std::string& text, char sep) {
   std::vector<std::string> parts;
@@ -34,7 +36,8 @@ double spec_number(const std::string& spec, const std::string& cell) {
     used = 0;
   }
   if (used == 0 || used != cell.size() || !std::isfinite(v))
-    throw InputError(fmt::format("--situations '{}': expected a finite number, got '{}'", spec, cell));
+    throw InputError(
+        fmt::format("--situations '{}': expected a finite number, got '{}'", spec, cell));
   return v;
 }
 
@@ -51,7 +54,8 @@ std::array<double, N> spec_numbers(const std::string& spec, const std::string& p
 
 int spec_count(const std::string& spec, double v) {
   if (v != std::floor(v) || v < 1 || v > kMaxPoints)
-    throw InputError(fmt::format("--situations '{}': expected a count 1..{}, got {}", spec, kMaxPoints, v));
+    throw InputError(
+        fmt::format("--situations '{}': expected a count 1..{}, got {}", spec, kMaxPoints, v));
   return static_cast<int>(v);
 }
 
@@ -59,10 +63,14 @@ int spec_count(const std::string& spec, double v) {
 
 std::string to_string(RegionShape shape) {
   switch (shape) {
-    case RegionShape::kLine: return "line";
-    case RegionShape::kGrid: return "grid";
-    case RegionShape::kBox: return "box";
-    case RegionShape::kList: return "list";
+    case RegionShape::kLine:
+      return "line";
+    case RegionShape::kGrid:
+      return "grid";
+    case RegionShape::kBox:
+      return "box";
+    case RegionShape::kList:
+      return "list";
   }
   return "?";
 }
@@ -72,7 +80,8 @@ double situation_input(const Field& field, std::string_view name, std::array<dou
   if (name == "xi_y") return hole[1] - field.tee[1];
   if (name == "hole_x") return hole[0];
   if (name == "hole_y") return hole[1];
-  throw InputError(fmt::format("input '{}' is not a situation (expected xi_x, xi_y, hole_x or hole_y)", name));
+  throw InputError(
+      fmt::format("input '{}' is not a situation (expected xi_x, xi_y, hole_x or hole_y)", name));
 }
 
 std::vector<std::string> Situations::learner_inputs() const {
@@ -100,7 +109,9 @@ std::vector<std::array<double, 2>> Situations::collection_points() const {
           p.push_back({lerp(x_range[0], x_range[1], i, counts[0]),
                        lerp(y_range[0], y_range[1], j, counts[1])});
       break;
-    case RegionShape::kList: p = points; break;
+    case RegionShape::kList:
+      p = points;
+      break;
   }
   return p;
 }
@@ -115,7 +126,8 @@ std::array<double, 2> Situations::sample(Rng& rng) const {
     case RegionShape::kGrid:
     case RegionShape::kBox: {
       const double sx = u(rng), sy = u(rng);
-      return {x_range[0] + sx * (x_range[1] - x_range[0]), y_range[0] + sy * (y_range[1] - y_range[0])};
+      return {x_range[0] + sx * (x_range[1] - x_range[0]),
+              y_range[0] + sy * (y_range[1] - y_range[0])};
     }
     case RegionShape::kList: {
       std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
@@ -136,11 +148,15 @@ std::vector<std::array<double, 2>> Situations::sample(int n, std::uint64_t seed)
 }
 
 void Situations::validate(const Field& field, const std::string& where_arg) const {
-  const std::string where = where_arg.empty() ? fmt::format("{}: situations", field.source) : where_arg;
-  const auto bad = [&](const std::string& why) { throw InputError(fmt::format("{}: {}", where, why)); };
+  const std::string where =
+      where_arg.empty() ? fmt::format("{}: situations", field.source) : where_arg;
+  const auto bad = [&](const std::string& why) {
+    throw InputError(fmt::format("{}: {}", where, why));
+  };
   switch (shape) {
     case RegionShape::kLine:
-      if (count < 1 || count > kMaxPoints) bad(fmt::format("line.count: expected 1..{}, got {}", kMaxPoints, count));
+      if (count < 1 || count > kMaxPoints)
+        bad(fmt::format("line.count: expected 1..{}, got {}", kMaxPoints, count));
       break;
     case RegionShape::kGrid:
     case RegionShape::kBox:
@@ -148,22 +164,30 @@ void Situations::validate(const Field& field, const std::string& where_arg) cons
         bad(fmt::format("counts: expected two counts >= 1 with at most {} holes, got [{}, {}]",
                         kMaxPoints, counts[0], counts[1]));
       if (x_range[1] < x_range[0] || y_range[1] < y_range[0])
-        bad(fmt::format("expected x and y ranges as [low, high], got [{}, {}], [{}, {}]", x_range[0],
-                        x_range[1], y_range[0], y_range[1]));
+        bad(fmt::format("expected x and y ranges as [low, high], got [{}, {}], [{}, {}]",
+                        x_range[0], x_range[1], y_range[0], y_range[1]));
       break;
     case RegionShape::kList:
-      if (points.empty() || points.size() > kMaxPoints) bad(fmt::format("list.points: expected 1..{} points", kMaxPoints));
+      if (points.empty() || points.size() > kMaxPoints)
+        bad(fmt::format("list.points: expected 1..{} points", kMaxPoints));
       break;
   }
   if (strategy != "min-speed" && strategy != "min-angle")
     bad(fmt::format("strategy: expected min-speed or min-angle, got '{}'", strategy));
   if (!learn_speed && !(speed > 0.0 && speed <= 10.0))
-    bad(fmt::format("speed: an angle-only region needs its club speed in (0, 10] m/s, got {}", speed));
+    bad(fmt::format("speed: an angle-only region needs its club speed in (0, 10] m/s, got {}",
+                    speed));
   // Every hole of the region (its corners suffice for lines and rectangles) must fit the lane.
   std::vector<std::array<double, 2>> corners;
-  if (shape == RegionShape::kLine) corners = {from, to};
-  else if (shape == RegionShape::kList) corners = points;
-  else corners = {{x_range[0], y_range[0]}, {x_range[0], y_range[1]}, {x_range[1], y_range[0]}, {x_range[1], y_range[1]}};
+  if (shape == RegionShape::kLine)
+    corners = {from, to};
+  else if (shape == RegionShape::kList)
+    corners = points;
+  else
+    corners = {{x_range[0], y_range[0]},
+               {x_range[0], y_range[1]},
+               {x_range[1], y_range[0]},
+               {x_range[1], y_range[1]}};
   for (const auto& c : corners) {
     try {
       check_hole_position(field, c);
@@ -178,10 +202,16 @@ void Situations::validate(const Field& field, const std::string& where_arg) cons
 std::array<double, 4> Situations::bounds() const {
   std::vector<std::array<double, 2>> corners;
   switch (shape) {
-    case RegionShape::kLine: corners = {from, to}; break;
+    case RegionShape::kLine:
+      corners = {from, to};
+      break;
     case RegionShape::kGrid:
-    case RegionShape::kBox: corners = {{x_range[0], y_range[0]}, {x_range[1], y_range[1]}}; break;
-    case RegionShape::kList: corners = points; break;
+    case RegionShape::kBox:
+      corners = {{x_range[0], y_range[0]}, {x_range[1], y_range[1]}};
+      break;
+    case RegionShape::kList:
+      corners = points;
+      break;
   }
   if (corners.empty()) throw InputError("situations: an empty list of holes");
   std::array<double, 4> b{corners[0][0], corners[0][0], corners[0][1], corners[0][1]};
@@ -219,7 +249,8 @@ Situations parse_situations_spec(const std::string& spec, const Situations& base
   const auto parts = split(spec, ':');
   const std::string kind = parts.empty() ? "" : parts[0];
   const auto need = [&](std::size_t n, const char* form) {
-    if (parts.size() != n) throw InputError(fmt::format("--situations '{}': expected {}", spec, form));
+    if (parts.size() != n)
+      throw InputError(fmt::format("--situations '{}': expected {}", spec, form));
   };
   if (kind == "line") {
     need(4, "line:X0,Y0:X1,Y1:N");
@@ -239,9 +270,11 @@ Situations parse_situations_spec(const std::string& spec, const Situations& base
     s.shape = RegionShape::kList;
     s.points.clear();
     for (const std::string& p : split(parts[1], ';')) s.points.push_back(spec_numbers<2>(spec, p));
-    if (s.points.size() > kMaxPoints) throw InputError(fmt::format("--situations '{}': too many points", spec));
+    if (s.points.size() > kMaxPoints)
+      throw InputError(fmt::format("--situations '{}': too many points", spec));
   } else {
-    throw InputError(fmt::format("--situations '{}': expected line:..., grid:..., box:... or list:...", spec));
+    throw InputError(
+        fmt::format("--situations '{}': expected line:..., grid:..., box:... or list:...", spec));
   }
   return s;
 }

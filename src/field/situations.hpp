@@ -28,15 +28,15 @@ std::string to_string(RegionShape shape);
 
 struct Situations {
   RegionShape shape = RegionShape::kBox;
-  std::array<double, 2> from{0, 0}, to{0, 0};     ///< line ends [m]
-  int count = 0;                                  ///< line: number of holes
+  std::array<double, 2> from{0, 0}, to{0, 0};          ///< line ends [m]
+  int count = 0;                                       ///< line: number of holes
   std::array<double, 2> x_range{0, 0}, y_range{0, 0};  ///< grid/box [m]
-  std::array<int, 2> counts{0, 0};                ///< grid/box: holes along x and y
-  std::vector<std::array<double, 2>> points;      ///< list [m]
-  bool learn_speed = true;      ///< outputs [angle, speed]; false: angle only at `speed`
-  double speed = 0.0;           ///< [m/s] club speed of an angle-only region (0 with learn_speed)
+  std::array<int, 2> counts{0, 0};                     ///< grid/box: holes along x and y
+  std::vector<std::array<double, 2>> points;           ///< list [m]
+  bool learn_speed = true;  ///< outputs [angle, speed]; false: angle only at `speed`
+  double speed = 0.0;       ///< [m/s] club speed of an angle-only region (0 with learn_speed)
   std::string strategy = "min-speed";  ///< the teacher's default strategy here
-  bool from_file = false;       ///< false: the default region was filled in
+  bool from_file = false;              ///< false: the default region was filled in
 
   /// The learner inputs of the region: a line's one coordinate (xi_x or xi_y, whichever varies
   /// more), else xi_x, xi_y (hole - tee [m]); outputs angle[, speed].

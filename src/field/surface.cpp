@@ -38,7 +38,9 @@ struct HeightVisitor {
     const int c0 = std::clamp(static_cast<int>(std::floor(gx)), 0, t.cols - 2);
     const int r0 = std::clamp(static_cast<int>(std::floor(gy)), 0, t.rows - 2);
     const double fx = std::clamp(gx - c0, 0.0, 1.0), fy = std::clamp(gy - r0, 0.0, 1.0);
-    const auto h = [&](int r, int c) { return t.heights[static_cast<std::size_t>(r * t.cols + c)]; };
+    const auto h = [&](int r, int c) {
+      return t.heights[static_cast<std::size_t>(r * t.cols + c)];
+    };
     return (1 - fy) * ((1 - fx) * h(r0, c0) + fx * h(r0, c0 + 1)) +
            fy * ((1 - fx) * h(r0 + 1, c0) + fx * h(r0 + 1, c0 + 1));
   }
@@ -74,8 +76,8 @@ struct GradientVisitor {
     // Central differences of the bilinear interpolant, half a cell wide.
     const double hx = 0.5 * (t.bounds[1] - t.bounds[0]) / (t.cols - 1);
     const double hy = 0.5 * (t.bounds[3] - t.bounds[2]) / (t.rows - 1);
-    return {(HeightVisitor{x + hx, y}(t) - HeightVisitor{x - hx, y}(t)) / (2 * hx),
-            (HeightVisitor{x, y + hy}(t) - HeightVisitor{x, y - hy}(t)) / (2 * hy)};
+    return {(HeightVisitor{x + hx, y}(t)-HeightVisitor{x - hx, y}(t)) / (2 * hx),
+            (HeightVisitor{x, y + hy}(t)-HeightVisitor{x, y - hy}(t)) / (2 * hy)};
   }
   std::array<double, 2> operator()(const FlattenTerm&) const { return {0.0, 0.0}; }
 };
@@ -113,7 +115,8 @@ HeightmapTerm load_png_heightmap(const std::string& path, double z_min, double z
   for (int r = 0; r < t.rows; ++r)
     for (int c = 0; c < t.cols; ++c)
       t.heights[static_cast<std::size_t>(r * t.cols + c)] =
-          z_min + (z_max - z_min) * pixels[static_cast<std::size_t>((t.rows - 1 - r) * t.cols + c)] / 255.0;
+          z_min +
+          (z_max - z_min) * pixels[static_cast<std::size_t>((t.rows - 1 - r) * t.cols + c)] / 255.0;
   return t;
 }
 
@@ -197,8 +200,8 @@ HeightmapTerm load_heightmap(const std::string& path, std::array<double, 4> boun
     throw InputError(fmt::format("{}: heightmap must be .png or .csv, got '{}'", path, ext));
   }
   if (t.rows < 2 || t.cols < 2)
-    throw InputError(fmt::format("{}: heightmap needs at least 2x2 values, got {}x{}", path,
-                                 t.rows, t.cols));
+    throw InputError(
+        fmt::format("{}: heightmap needs at least 2x2 values, got {}x{}", path, t.rows, t.cols));
   t.source = path;
   t.bounds = bounds;
   return t;

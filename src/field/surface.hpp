@@ -46,11 +46,11 @@ struct ArctanTerm {
 
 /// A grid of heights [m] over the rectangle `bounds`, bilinearly interpolated, clamped outside.
 struct HeightmapTerm {
-  std::string source;                          ///< file it came from (for messages)
-  std::array<double, 4> bounds{0, 1, 0, 1};    ///< [x_min, x_max, y_min, y_max] [m]
-  int rows = 0;                                ///< along y
-  int cols = 0;                                ///< along x
-  std::vector<double> heights;                 ///< rows*cols, row-major, row 0 at y_min [m]
+  std::string source;                        ///< file it came from (for messages)
+  std::array<double, 4> bounds{0, 1, 0, 1};  ///< [x_min, x_max, y_min, y_max] [m]
+  int rows = 0;                              ///< along y
+  int cols = 0;                              ///< along x
+  std::vector<double> heights;               ///< rows*cols, row-major, row 0 at y_min [m]
 };
 
 /// A level pad (e.g. the tee): levels the sum of the terms *before* it to that sum's height at

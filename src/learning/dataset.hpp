@@ -26,9 +26,9 @@ struct Dataset {
 /// Of the columns `candidates` (e.g. "speed"), those present in `table`, not among `used` (the
 /// model's inputs and outputs), and constant over every row: (name, value) pairs. An angle-only
 /// data set records its fixed club speed this way (Model::fixed).
-std::vector<std::pair<std::string, double>> constant_columns(const CsvTable& table,
-                                                             const std::vector<std::string>& candidates,
-                                                             const std::vector<std::string>& used);
+std::vector<std::pair<std::string, double>> constant_columns(
+    const CsvTable& table, const std::vector<std::string>& candidates,
+    const std::vector<std::string>& used);
 
 /// Largest magnitude a data set value may have (larger ones are an InputError).
 inline constexpr double kMaxDatasetValue = 1e100;
@@ -39,7 +39,8 @@ Dataset dataset_from_table(const CsvTable& table, const std::vector<std::string>
                            const std::vector<std::string>& output_names, int min_rows = 2);
 
 /// Reads a training/validation dataset (at least 2 rows).
-Dataset load_dataset(const std::filesystem::path& path, const std::vector<std::string>& input_names = kDefaultInputs,
+Dataset load_dataset(const std::filesystem::path& path,
+                     const std::vector<std::string>& input_names = kDefaultInputs,
                      const std::vector<std::string>& output_names = kDefaultOutputs);
 
 /// The named input columns of a query table (at least 1 row), (N x I).

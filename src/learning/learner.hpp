@@ -34,13 +34,14 @@ ComponentSelection parse_selection(std::string_view name);  ///< "bic" | "cv"
 
 struct TrainOptions {
   Method method = Method::kGpr;
-  int num_gaussians = 0;     ///< K >= 1, or 0 to choose K in 1..max_gaussians
+  int num_gaussians = 0;  ///< K >= 1, or 0 to choose K in 1..max_gaussians
   ComponentSelection selection = ComponentSelection::kBic;
-  int max_gaussians = 5;     ///< upper end of the search (>= 1)
-  int cv_folds = 5;          ///< folds for cross-validation (>= 2; capped at N)
-  int restarts = 10;         ///< GPR optimiser starts and k-means++ seedings (>= 1)
-  std::uint64_t seed = 1;    ///< everything random derives from it
-  stats::EmOptions em{300, 1e-8, 1e-2, 5};  ///< reg_covar in standardised units (used as is when !choose_reg_covar)
+  int max_gaussians = 5;   ///< upper end of the search (>= 1)
+  int cv_folds = 5;        ///< folds for cross-validation (>= 2; capped at N)
+  int restarts = 10;       ///< GPR optimiser starts and k-means++ seedings (>= 1)
+  std::uint64_t seed = 1;  ///< everything random derives from it
+  stats::EmOptions em{300, 1e-8, 1e-2,
+                      5};  ///< reg_covar in standardised units (used as is when !choose_reg_covar)
   /// Choose reg_covar from the data instead of using em.reg_covar: no single value suits both
   /// noisy data (1e-2 is best at a few noisy points) and clean data (1e-2 over-smooths it 4x).
   /// The default is reg_covar_rows / N (at most em.reg_covar); a value of `reg_covar_grid` replaces
@@ -80,12 +81,13 @@ struct Model {
   Method method = Method::kGpr;
   std::vector<std::string> input_names;
   std::vector<std::string> output_names;
-  std::uint64_t seed = 0;                 ///< the seed it was trained with (recorded)
-  std::vector<stats::GpModel> gps;        ///< GPR: one per output
-  Standardizer input_standardizer;        ///< GMM-based
-  Standardizer output_standardizer;       ///< GMM-based
-  std::vector<stats::Gmm> gmms;           ///< GMR: one per output over (inputs, output); joint: one over (inputs, outputs)
-  std::vector<FitReport> reports;         ///< (O)
+  std::uint64_t seed = 0;            ///< the seed it was trained with (recorded)
+  std::vector<stats::GpModel> gps;   ///< GPR: one per output
+  Standardizer input_standardizer;   ///< GMM-based
+  Standardizer output_standardizer;  ///< GMM-based
+  std::vector<stats::Gmm>
+      gmms;  ///< GMR: one per output over (inputs, output); joint: one over (inputs, outputs)
+  std::vector<FitReport> reports;  ///< (O)
   /// Quantities that were constant in the training data and are not learned, by name (e.g. the
   /// club speed "speed" [m/s] of an angle-only data set, thesis 6.2.1): who plays the model uses
   /// them as they are. File key "fixed" (optional).

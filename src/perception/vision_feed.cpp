@@ -15,8 +15,9 @@ void VisionFeedConfig::validate() const {
     throw InputError(
         fmt::format("vision feed max_age: expected a finite number > 0 s, got {}", max_age));
   if (!(std::isfinite(seq_reset_after) && seq_reset_after > max_age))
-    throw InputError(fmt::format("vision feed seq_reset_after: expected a finite number > max_age ({} s), got {}",
-                                 max_age, seq_reset_after));
+    throw InputError(fmt::format(
+        "vision feed seq_reset_after: expected a finite number > max_age ({} s), got {}", max_age,
+        seq_reset_after));
   if (max_datagrams_per_poll < 1)
     throw InputError(fmt::format("vision feed max_datagrams_per_poll: expected >= 1, got {}",
                                  max_datagrams_per_poll));

@@ -69,26 +69,37 @@ VisionParse parse_vision_message(std::string_view datagram, const VisionLimits& 
     r.error = VisionError::kNotFinite;
     return r;
   }
-  if (!read_point(j, "ball", r.message.ball, r.error) || !read_point(j, "hole", r.message.hole, r.error))
+  if (!read_point(j, "ball", r.message.ball, r.error) ||
+      !read_point(j, "hole", r.message.hole, r.error))
     return r;
-  if (!inside(r.message.ball, limits) || !inside(r.message.hole, limits)) r.error = VisionError::kOutOfRange;
+  if (!inside(r.message.ball, limits) || !inside(r.message.hole, limits))
+    r.error = VisionError::kOutOfRange;
   return r;
 }
 
 std::string format_vision_message(const VisionMessage& m) {
-  const nlohmann::json j = {{"format", kVisionFormat}, {"seq", m.seq}, {"stamp", m.stamp},
-                            {"ball", m.ball}, {"hole", m.hole}};
+  const nlohmann::json j = {{"format", kVisionFormat},
+                            {"seq", m.seq},
+                            {"stamp", m.stamp},
+                            {"ball", m.ball},
+                            {"hole", m.hole}};
   return j.dump();
 }
 
 std::string_view to_string(VisionError error) {
   switch (error) {
-    case VisionError::kNone: return "ok";
-    case VisionError::kTooLong: return "too long";
-    case VisionError::kMalformed: return "malformed";
-    case VisionError::kWrongFormat: return "wrong format tag";
-    case VisionError::kNotFinite: return "not finite";
-    case VisionError::kOutOfRange: return "out of range";
+    case VisionError::kNone:
+      return "ok";
+    case VisionError::kTooLong:
+      return "too long";
+    case VisionError::kMalformed:
+      return "malformed";
+    case VisionError::kWrongFormat:
+      return "wrong format tag";
+    case VisionError::kNotFinite:
+      return "not finite";
+    case VisionError::kOutOfRange:
+      return "out of range";
   }
   return "?";
 }

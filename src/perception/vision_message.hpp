@@ -22,8 +22,8 @@ namespace mg::perception {
 inline constexpr std::uint64_t kMaxVisionSeq = 9007199254740992ULL;
 
 struct VisionMessage {
-  std::uint64_t seq = 0;  ///< 0..kMaxVisionSeq
-  double stamp = 0.0;                  ///< [s] sender clock
+  std::uint64_t seq = 0;                ///< 0..kMaxVisionSeq
+  double stamp = 0.0;                   ///< [s] sender clock
   std::array<double, 3> ball{0, 0, 0};  ///< [m] world frame
   std::array<double, 3> hole{0, 0, 0};  ///< [m] world frame
 };

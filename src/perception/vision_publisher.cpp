@@ -12,7 +12,8 @@ namespace mg::perception {
 
 void VisionPublisherConfig::validate() const {
   auto bad = [](const char* field, const char* expected, double got) {
-    return InputError(fmt::format("vision publisher: {}: expected {}, got {}", field, expected, got));
+    return InputError(
+        fmt::format("vision publisher: {}: expected {}, got {}", field, expected, got));
   };
   if (!std::isfinite(rate) || rate < 1.0 || rate > 1000.0) throw bad("rate", "1..1000 Hz", rate);
   if (!std::isfinite(noise) || noise < 0.0 || noise > 0.5) throw bad("noise", "0..0.5 m", noise);

@@ -16,10 +16,10 @@
 namespace mg::perception {
 
 struct VisionPublisherConfig {
-  double rate = 60.0;     ///< [Hz] captures per second
-  double noise = 0.0;     ///< [m] Gaussian std added to every coordinate
-  double latency = 0.0;   ///< [s] from capture to send
-  double dropout = 0.0;   ///< probability a capture is not sent
+  double rate = 60.0;    ///< [Hz] captures per second
+  double noise = 0.0;    ///< [m] Gaussian std added to every coordinate
+  double latency = 0.0;  ///< [s] from capture to send
+  double dropout = 0.0;  ///< probability a capture is not sent
   std::uint64_t seed = 1;
   void validate() const;  ///< throws InputError naming the field
 };

@@ -20,7 +20,8 @@ constexpr std::size_t kMaxPlantBytes = 1 << 20;
 void check_range(const std::string& source, const std::string& key, double v, double lo, double hi,
                  const char* unit) {
   if (!(v >= lo && v <= hi))
-    throw InputError(fmt::format("{}: {}: expected {}..{}{}, got {}", source, key, lo, hi, unit, v));
+    throw InputError(
+        fmt::format("{}: {}: expected {}..{}{}, got {}", source, key, lo, hi, unit, v));
 }
 
 /// A uniform draw in [lo, hi) from 53 random bits (the same on every platform).
@@ -43,33 +44,41 @@ bool Plant::arm_changed() const {
 }
 
 bool Plant::empty() const {
-  return !field_changed() && !arm_changed() && field.hole_offset == std::array<double, 2>{0.0, 0.0} &&
-         arm.launch_angle_bias == 0.0 && arm.club_speed_scale == 1.0 && arm.torque_noise == 0.0 &&
-         perception.noise == 0.0 && perception.latency == 0.0;
+  return !field_changed() && !arm_changed() &&
+         field.hole_offset == std::array<double, 2>{0.0, 0.0} && arm.launch_angle_bias == 0.0 &&
+         arm.club_speed_scale == 1.0 && arm.torque_noise == 0.0 && perception.noise == 0.0 &&
+         perception.latency == 0.0;
 }
 
 void Plant::validate() const {
   const std::string s = source.empty() ? "plant" : source;
   const auto& f = field;
   if (f.rolling_resistance && f.rolling_resistance_scale)
-    throw InputError(fmt::format("{}: field: rolling_resistance and rolling_resistance_scale: give one", s));
+    throw InputError(
+        fmt::format("{}: field: rolling_resistance and rolling_resistance_scale: give one", s));
   if (f.sliding_friction && f.sliding_friction_scale)
-    throw InputError(fmt::format("{}: field: sliding_friction and sliding_friction_scale: give one", s));
-  if (f.rolling_resistance) check_range(s, "field.rolling_resistance", *f.rolling_resistance, 0.01, 1.0, "");
+    throw InputError(
+        fmt::format("{}: field: sliding_friction and sliding_friction_scale: give one", s));
+  if (f.rolling_resistance)
+    check_range(s, "field.rolling_resistance", *f.rolling_resistance, 0.01, 1.0, "");
   if (f.rolling_resistance_scale)
     check_range(s, "field.rolling_resistance_scale", *f.rolling_resistance_scale, 0.2, 5.0, "");
-  if (f.sliding_friction) check_range(s, "field.sliding_friction", *f.sliding_friction, 0.01, 2.0, "");
+  if (f.sliding_friction)
+    check_range(s, "field.sliding_friction", *f.sliding_friction, 0.01, 2.0, "");
   if (f.sliding_friction_scale)
     check_range(s, "field.sliding_friction_scale", *f.sliding_friction_scale, 0.1, 5.0, "");
   for (int i = 0; i < 2; ++i) {
-    check_range(s, fmt::format("field.extra_slope[{}]", i), f.extra_slope[static_cast<std::size_t>(i)], -0.1, 0.1, "");
-    check_range(s, fmt::format("field.hole_offset[{}]", i), f.hole_offset[static_cast<std::size_t>(i)], -0.2, 0.2, " m");
+    check_range(s, fmt::format("field.extra_slope[{}]", i),
+                f.extra_slope[static_cast<std::size_t>(i)], -0.1, 0.1, "");
+    check_range(s, fmt::format("field.hole_offset[{}]", i),
+                f.hole_offset[static_cast<std::size_t>(i)], -0.2, 0.2, " m");
   }
   check_range(s, "arm.launch_angle_bias", arm.launch_angle_bias, -0.1, 0.1, " rad");
   check_range(s, "arm.club_speed_scale", arm.club_speed_scale, 0.5, 1.5, "");
   check_range(s, "arm.club_restitution_scale", arm.club_restitution_scale, 0.5, 1.2, "");
   for (std::size_t j = 0; j < 7; ++j)
-    check_range(s, fmt::format("arm.joint_friction[{}]", j), arm.joint_friction[j], 0.0, 20.0, " N m");
+    check_range(s, fmt::format("arm.joint_friction[{}]", j), arm.joint_friction[j], 0.0, 20.0,
+                " N m");
   check_range(s, "arm.torque_noise", arm.torque_noise, 0.0, 0.05, "");
   check_range(s, "perception.noise", perception.noise, 0.0, 0.05, " m");
   check_range(s, "perception.latency", perception.latency, 0.0, 0.5, " s");
@@ -77,8 +86,8 @@ void Plant::validate() const {
 
 Plant parse_plant(std::string_view yaml_text, const std::string& source) {
   if (yaml_text.size() > kMaxPlantBytes)
-    throw InputError(fmt::format("{}: {} bytes: a plant file is at most {} bytes", source, yaml_text.size(),
-                                 kMaxPlantBytes));
+    throw InputError(fmt::format("{}: {} bytes: a plant file is at most {} bytes", source,
+                                 yaml_text.size(), kMaxPlantBytes));
   YAML::Node root;
   try {
     root = YAML::Load(std::string(yaml_text));
@@ -100,9 +109,11 @@ Plant parse_plant(std::string_view yaml_text, const std::string& source) {
       field::MapReader f = r.child("field");
       auto& t = p.field;
       if (f.has("rolling_resistance")) t.rolling_resistance = f.number("rolling_resistance");
-      if (f.has("rolling_resistance_scale")) t.rolling_resistance_scale = f.number("rolling_resistance_scale");
+      if (f.has("rolling_resistance_scale"))
+        t.rolling_resistance_scale = f.number("rolling_resistance_scale");
       if (f.has("sliding_friction")) t.sliding_friction = f.number("sliding_friction");
-      if (f.has("sliding_friction_scale")) t.sliding_friction_scale = f.number("sliding_friction_scale");
+      if (f.has("sliding_friction_scale"))
+        t.sliding_friction_scale = f.number("sliding_friction_scale");
       t.extra_slope = f.numbers<2>("extra_slope", t.extra_slope);
       t.hole_offset = f.numbers<2>("hole_offset", t.hole_offset);
       f.finish();
@@ -134,10 +145,12 @@ Plant parse_plant(std::string_view yaml_text, const std::string& source) {
 Plant load_plant(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError(fmt::format("plant: '{}': expected a plant file (YAML), {}", path.string(),
-                                 std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
+    throw InputError(
+        fmt::format("plant: '{}': expected a plant file (YAML), {}", path.string(),
+                    std::filesystem::exists(path, ec) ? "not a regular file" : "no such file"));
   if (std::filesystem::file_size(path, ec) > kMaxPlantBytes)
-    throw InputError(fmt::format("plant: '{}': larger than {} bytes, not a plant file", path.string(), kMaxPlantBytes));
+    throw InputError(fmt::format("plant: '{}': larger than {} bytes, not a plant file",
+                                 path.string(), kMaxPlantBytes));
   return parse_plant(read_text_file(path), path.string());
 }
 
@@ -197,17 +210,22 @@ std::string plant_to_yaml(const Plant& p) {
   std::string field, arm, perception;
   const auto& f = p.field;
   if (f.rolling_resistance) field += "  rolling_resistance: " + num(*f.rolling_resistance) + "\n";
-  if (f.rolling_resistance_scale) field += "  rolling_resistance_scale: " + num(*f.rolling_resistance_scale) + "\n";
+  if (f.rolling_resistance_scale)
+    field += "  rolling_resistance_scale: " + num(*f.rolling_resistance_scale) + "\n";
   if (f.sliding_friction) field += "  sliding_friction: " + num(*f.sliding_friction) + "\n";
-  if (f.sliding_friction_scale) field += "  sliding_friction_scale: " + num(*f.sliding_friction_scale) + "\n";
+  if (f.sliding_friction_scale)
+    field += "  sliding_friction_scale: " + num(*f.sliding_friction_scale) + "\n";
   if (f.extra_slope[0] != 0.0 || f.extra_slope[1] != 0.0)
     field += fmt::format("  extra_slope: [{}, {}]\n", num(f.extra_slope[0]), num(f.extra_slope[1]));
   if (f.hole_offset[0] != 0.0 || f.hole_offset[1] != 0.0)
-    field += fmt::format("  hole_offset: [{}, {}]  # m\n", num(f.hole_offset[0]), num(f.hole_offset[1]));
+    field +=
+        fmt::format("  hole_offset: [{}, {}]  # m\n", num(f.hole_offset[0]), num(f.hole_offset[1]));
   const auto& a = p.arm;
-  if (a.launch_angle_bias != 0.0) arm += "  launch_angle_bias: " + num(a.launch_angle_bias) + "  # rad\n";
+  if (a.launch_angle_bias != 0.0)
+    arm += "  launch_angle_bias: " + num(a.launch_angle_bias) + "  # rad\n";
   if (a.club_speed_scale != 1.0) arm += "  club_speed_scale: " + num(a.club_speed_scale) + "\n";
-  if (a.club_restitution_scale != 1.0) arm += "  club_restitution_scale: " + num(a.club_restitution_scale) + "\n";
+  if (a.club_restitution_scale != 1.0)
+    arm += "  club_restitution_scale: " + num(a.club_restitution_scale) + "\n";
   bool friction = false;
   for (double v : a.joint_friction) friction = friction || v != 0.0;
   if (friction) {
@@ -217,8 +235,10 @@ std::string plant_to_yaml(const Plant& p) {
   }
   if (a.torque_noise != 0.0) arm += "  torque_noise: " + num(a.torque_noise) + "\n";
   if (p.perception.noise != 0.0) perception += "  noise: " + num(p.perception.noise) + "  # m\n";
-  if (p.perception.latency != 0.0) perception += "  latency: " + num(p.perception.latency) + "  # s\n";
-  std::string out = "# minigolf plant: the world as it really is (docs/reality.md)\nformat_version: 1\n";
+  if (p.perception.latency != 0.0)
+    perception += "  latency: " + num(p.perception.latency) + "  # s\n";
+  std::string out =
+      "# minigolf plant: the world as it really is (docs/reality.md)\nformat_version: 1\n";
   if (!field.empty()) out += "field:\n" + field;
   if (!arm.empty()) out += "arm:\n" + arm;
   if (!perception.empty()) out += "perception:\n" + perception;

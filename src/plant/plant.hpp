@@ -39,11 +39,11 @@ struct FieldTruth {
 
 /// Physical truth of the arm and club.
 struct ArmTruth {
-  double launch_angle_bias = 0.0;      ///< [rad] added to the ball's launch direction
-  double club_speed_scale = 1.0;       ///< the arm reaches this fraction of the commanded speed
-  double club_restitution_scale = 1.0; ///< the club face's restitution times this
+  double launch_angle_bias = 0.0;          ///< [rad] added to the ball's launch direction
+  double club_speed_scale = 1.0;           ///< the arm reaches this fraction of the commanded speed
+  double club_restitution_scale = 1.0;     ///< the club face's restitution times this
   std::array<double, 7> joint_friction{};  ///< [N m] Coulomb friction per joint
-  double torque_noise = 0.0;           ///< joint-torque noise std, fraction of the limits
+  double torque_noise = 0.0;               ///< joint-torque noise std, fraction of the limits
 };
 
 /// Physical truth of the vision.

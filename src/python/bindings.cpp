@@ -16,8 +16,9 @@ namespace py = pybind11;
 using namespace mg;
 
 PYBIND11_MODULE(_minigolf, m) {
-  m.doc() = "A simulated Barrett WAM that learns to putt: fields, worlds, putts, learners, DS rollouts, "
-            "teacher, evaluation. Units: m, s, rad, m/s.";
+  m.doc() =
+      "A simulated Barrett WAM that learns to putt: fields, worlds, putts, learners, DS rollouts, "
+      "teacher, evaluation. Units: m, s, rad, m/s.";
 
   static py::exception<NumericalError> numerical(m, "NumericalError", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {

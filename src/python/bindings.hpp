@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 #include <mujoco/mujoco.h>
+#include <Eigen/Dense>
 
 #include "core/error.hpp"
 #include "sim/world.hpp"
@@ -42,7 +42,9 @@ inline py::array_t<double> matrix(const Eigen::MatrixXd& m) {
 }
 
 inline Eigen::MatrixXd to_matrix(const Array& a, const char* what) {
-  if (a.ndim() != 2) throw InputError(fmt::format("{}: expected a 2-D array (N x D), got {} dimensions", what, a.ndim()));
+  if (a.ndim() != 2)
+    throw InputError(
+        fmt::format("{}: expected a 2-D array (N x D), got {} dimensions", what, a.ndim()));
   Eigen::MatrixXd m(a.shape(0), a.shape(1));
   auto r = a.unchecked<2>();
   for (py::ssize_t i = 0; i < a.shape(0); ++i)
@@ -68,7 +70,8 @@ struct Data {
 
 /// Throws unless `d` is an mjData of `w` (another world's would be read out of bounds).
 inline mjData* data_of(const sim::World& w, const Data& d) {
-  if (d.world != &w) throw InputError("World: this Data belongs to another world (use that world's make_data)");
+  if (d.world != &w)
+    throw InputError("World: this Data belongs to another world (use that world's make_data)");
   return d.d;
 }
 
@@ -96,10 +99,12 @@ class Lease {
   PySystemData* d_;
 };
 
-void bind_fields(py::module_& m);    ///< Situations, Field (field_bindings.cpp)
-void bind_worlds(py::module_& m);    ///< World, Data (world_bindings.cpp)
-void bind_system(py::module_& m);    ///< SystemData, PuttResult, Example, Evaluation, System (system_bindings.cpp)
-void bind_learners(py::module_& m);  ///< Model, train, load_dataset, HittingModel (learner_bindings.cpp)
-void bind_render(py::module_& m);    ///< Renderer (render_bindings.cpp)
+void bind_fields(py::module_& m);  ///< Situations, Field (field_bindings.cpp)
+void bind_worlds(py::module_& m);  ///< World, Data (world_bindings.cpp)
+void bind_system(
+    py::module_& m);  ///< SystemData, PuttResult, Example, Evaluation, System (system_bindings.cpp)
+void bind_learners(
+    py::module_& m);  ///< Model, train, load_dataset, HittingModel (learner_bindings.cpp)
+void bind_render(py::module_& m);  ///< Renderer (render_bindings.cpp)
 
 }  // namespace mg::python

@@ -30,7 +30,8 @@ class PyRenderer {
  public:
   PyRenderer(const sim::World& world, int width, int height, bool visible, std::string camera)
       : world_(world), camera_name_(std::move(camera)) {
-    viz::camera_preset(camera_name_, world_, probe());  // an unknown name fails before a window opens
+    viz::camera_preset(camera_name_, world_,
+                       probe());  // an unknown name fails before a window opens
     window_ = std::make_unique<viz::GlWindow>(width, height, visible, "minigolf");
     renderer_ = std::make_unique<viz::Renderer>(world_, width, height);
     visible_ = visible;
@@ -38,8 +39,8 @@ class PyRenderer {
 
   /// The frame of `data` (pose copied in), with the ball moved to `ball` [m] when given and the
   /// `path` (N x 2 or N x 3 [m]) drawn as a line. Rows top down, (height, width, 3) uint8.
-  py::array_t<std::uint8_t> render(const Data& data, std::optional<std::array<double, 3>> ball, const Points& path,
-                                   const std::string& label) {
+  py::array_t<std::uint8_t> render(const Data& data, std::optional<std::array<double, 3>> ball,
+                                   const Points& path, const std::string& label) {
     prepare(data, ball, path, label);
     const viz::Image image = renderer_->render(camera_, decorations_);
     py::array_t<std::uint8_t> out({image.height, image.width, 3});
@@ -48,8 +49,10 @@ class PyRenderer {
   }
 
   /// Draws the same frame into the window (visible renderers). False once the window was closed.
-  bool show(const Data& data, std::optional<std::array<double, 3>> ball, const Points& path, const std::string& label) {
-    if (!visible_) throw InputError("Renderer.show: this renderer is off screen (make it with visible=True)");
+  bool show(const Data& data, std::optional<std::array<double, 3>> ball, const Points& path,
+            const std::string& label) {
+    if (!visible_)
+      throw InputError("Renderer.show: this renderer is off screen (make it with visible=True)");
     prepare(data, ball, path, label);
     const auto [w, h] = window_->framebuffer_size();
     mjr_setBuffer(mjFB_WINDOW, &renderer_->context());
@@ -81,8 +84,8 @@ class PyRenderer {
     return probe_.get();
   }
 
-  void prepare(const Data& data, const std::optional<std::array<double, 3>>& ball, const Points& path,
-               const std::string& label) {
+  void prepare(const Data& data, const std::optional<std::array<double, 3>>& ball,
+               const Points& path, const std::string& label) {
     live();
     const mjData* src = data_of(world_, data);
     window_->make_current();
@@ -96,13 +99,15 @@ class PyRenderer {
     decorations_.label = label;
     if (path.size() > 0) {
       if (path.ndim() != 2 || (path.shape(1) != 2 && path.shape(1) != 3))
-        throw InputError(fmt::format("Renderer: path: expected an (N, 2) or (N, 3) array [m], got {} dimensions",
-                                     path.ndim()));
+        throw InputError(
+            fmt::format("Renderer: path: expected an (N, 2) or (N, 3) array [m], got {} dimensions",
+                        path.ndim()));
       const auto p = path.unchecked<2>();
       const field::Field& f = world_.field();
       for (py::ssize_t i = 0; i < p.shape(0); ++i) {
         const double x = p(i, 0), y = p(i, 1);
-        if (!std::isfinite(x) || !std::isfinite(y)) throw InputError("Renderer: path: expected finite points");
+        if (!std::isfinite(x) || !std::isfinite(y))
+          throw InputError("Renderer: path: expected finite points");
         const double z = p.shape(1) == 3 ? p(i, 2) : f.height(x, y) + f.ball.radius;
         decorations_.path.push_back({x, y, z});
       }
@@ -123,23 +128,28 @@ class PyRenderer {
 }  // namespace
 
 void bind_render(py::module_& m) {
-  py::class_<PyRenderer>(m, "Renderer",
-                         "Frames of a World drawn by MuJoCo's renderer: off screen (needs a display; on a server run "
-                         "under `xvfb-run -a`) or in a window (visible=True). Draws its own copy of the model, so a "
-                         "simulation is never changed. Use it from the thread that made it.")
-      .def(py::init<const sim::World&, int, int, bool, std::string>(), py::arg("world"), py::arg("width") = 640,
-           py::arg("height") = 480, py::arg("visible") = false, py::arg("camera") = "overview",
-           py::keep_alive<1, 2>(),
-           "camera: 'overview', 'side', 'top' or 'follow'. Raises RuntimeError without a display, ValueError "
+  py::class_<PyRenderer>(
+      m, "Renderer",
+      "Frames of a World drawn by MuJoCo's renderer: off screen (needs a display; on a server run "
+      "under `xvfb-run -a`) or in a window (visible=True). Draws its own copy of the model, so a "
+      "simulation is never changed. Use it from the thread that made it.")
+      .def(py::init<const sim::World&, int, int, bool, std::string>(), py::arg("world"),
+           py::arg("width") = 640, py::arg("height") = 480, py::arg("visible") = false,
+           py::arg("camera") = "overview", py::keep_alive<1, 2>(),
+           "camera: 'overview', 'side', 'top' or 'follow'. Raises RuntimeError without a display, "
+           "ValueError "
            "for a bad size (16..4096) or camera.")
       .def("render", &PyRenderer::render, py::arg("data"), py::arg("ball") = py::none(),
            py::arg("path") = Points(std::vector<py::ssize_t>{0, 2}), py::arg("label") = "",
-           "The frame of `data` (a Data of the same world) as an (height, width, 3) uint8 array, rows top down; "
-           "ball: draw the ball at (x, y, z) [m] instead; path: (N, 2) or (N, 3) points [m] drawn as a line "
+           "The frame of `data` (a Data of the same world) as an (height, width, 3) uint8 array, "
+           "rows top down; "
+           "ball: draw the ball at (x, y, z) [m] instead; path: (N, 2) or (N, 3) points [m] drawn "
+           "as a line "
            "(N x 2: on the lane at ball height); label: text at the top left.")
       .def("show", &PyRenderer::show, py::arg("data"), py::arg("ball") = py::none(),
            py::arg("path") = Points(std::vector<py::ssize_t>{0, 2}), py::arg("label") = "",
-           "Draws the same frame into the window (visible=True). Returns False once the window was closed.")
+           "Draws the same frame into the window (visible=True). Returns False once the window was "
+           "closed.")
       .def("close", &PyRenderer::close, "Frees the OpenGL context and the window (idempotent)")
       .def_property_readonly("closed", &PyRenderer::closed)
       .def_property_readonly("width", &PyRenderer::width, "[pixels]")

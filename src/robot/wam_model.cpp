@@ -142,7 +142,8 @@ std::string wam_bodies_mjcf(const WamMount& mount) {
         i, vec3(joint_pos), vec3(joint_axis), kJointLower[k], kJointUpper[k], kArmature[k],
         kDamping[k]);
     if (mount.joint_friction[k] > 0.0)  // only then: a mount without friction is the same XML
-      out.insert(out.size() - 2, fmt::format(R"( frictionloss="{:.17g}")", mount.joint_friction[k]));
+      out.insert(out.size() - 2,
+                 fmt::format(R"( frictionloss="{:.17g}")", mount.joint_friction[k]));
     out += inertial(kLinkInertials[k]);
     out += link_visuals(i, joint_pos, joint_axis);
     ++open;

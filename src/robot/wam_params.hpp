@@ -50,7 +50,8 @@ inline constexpr std::array<double, kNumJoints> kTorqueLimit{60, 60, 45, 30, 10,
 /// 42, 28.25, 28.25, 18 at J1-J4, 10-15 at the wrist) these are motor speeds of roughly
 /// 1100-2200 rpm, ordinary for the WAM's brushless motors. The previous (2.0, 2.0, 2.5, 2.5, 3,
 /// 3, 3) capped the club at ~1.4 m/s (not enough for a 2 m putt).
-inline constexpr std::array<double, kNumJoints> kVelocityLimit{5.5, 5.5, 7.0, 7.0, 10.0, 10.0, 10.0};
+inline constexpr std::array<double, kNumJoints> kVelocityLimit{5.5,  5.5,  7.0, 7.0,
+                                                               10.0, 10.0, 10.0};
 
 /// [m/s] end-point (club face) speed limits: the libbarrett safety rule, and the WAM maximum.
 inline constexpr double kSafeEndpointSpeed = 1.5;

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <random>
 
+#include <fmt/format.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -17,11 +17,13 @@ namespace mg::selfteach {
 void CrkrOptions::validate() const {
   if (budget < 1 || budget > 100000)
     throw InputError(fmt::format("crkr: budget: expected 1..100000 putts, got {}", budget));
-  if (!(lambda > 0.0 && lambda < 1e6)) throw InputError(fmt::format("crkr: lambda: expected > 0, got {}", lambda));
+  if (!(lambda > 0.0 && lambda < 1e6))
+    throw InputError(fmt::format("crkr: lambda: expected > 0, got {}", lambda));
   if (!(bandwidth >= 0.0 && bandwidth < 10.0))
     throw InputError(fmt::format("crkr: bandwidth: expected 0..10 m, got {}", bandwidth));
   if (!(sigma_angle > 0.0 && sigma_angle < 1.0 && sigma_speed > 0.0 && sigma_speed < 2.0))
-    throw InputError("crkr: exploration scales: expected 0 < sigma_angle < 1 rad, 0 < sigma_speed < 2 m/s");
+    throw InputError(
+        "crkr: exploration scales: expected 0 < sigma_angle < 1 rad, 0 < sigma_speed < 2 m/s");
 }
 
 std::array<double, 3> CrkrPolicy::act(const field::Field& field, const field::Situations& region,
@@ -38,7 +40,8 @@ std::array<double, 3> CrkrPolicy::act(const field::Field& field, const field::Si
   Eigen::MatrixXd r(n, 2);
   for (Eigen::Index i = 0; i < n; ++i) {
     const auto ui = static_cast<std::size_t>(i);
-    for (Eigen::Index j = 0; j < n; ++j) k(i, j) = kernel(holes[ui], holes[static_cast<std::size_t>(j)]);
+    for (Eigen::Index j = 0; j < n; ++j)
+      k(i, j) = kernel(holes[ui], holes[static_cast<std::size_t>(j)]);
     k(i, i) += lambda * costs[ui];
     ks(i) = kernel(hole, holes[ui]);
     r(i, 0) = residuals[ui][0];
@@ -62,7 +65,9 @@ CrkrResult crkr_learn(const system::System& system, const field::Situations& reg
   CrkrPolicy& pol = res.policy;
   pol.lambda = options.lambda;
   const auto b = region_bounds(region);
-  pol.bandwidth = options.bandwidth > 0.0 ? options.bandwidth : std::max(0.02, 0.25 * std::max(b[1] - b[0], b[3] - b[2]));
+  pol.bandwidth = options.bandwidth > 0.0
+                      ? options.bandwidth
+                      : std::max(0.02, 0.25 * std::max(b[1] - b[0], b[3] - b[2]));
   pol.arrival = teacher::arrival_speed(field, teacher::parse_strategy(region.strategy));
   std::vector<int> checkpoints = options.checkpoints;
   std::sort(checkpoints.begin(), checkpoints.end());
@@ -75,7 +80,8 @@ CrkrResult crkr_learn(const system::System& system, const field::Situations& reg
     const auto act = pol.act(field, region, hole);
     double angle = act[0] + act[2] * options.sigma_angle * normal(rng);
     double speed = act[1];
-    const double speed_draw = normal(rng);  // drawn always: the stream does not depend on the region
+    const double speed_draw =
+        normal(rng);  // drawn always: the stream does not depend on the region
     if (region.learn_speed) speed += act[2] * options.sigma_speed * speed_draw;
     angle = std::clamp(angle, cfg.angle_min + 1e-6, cfg.angle_max - 1e-6);
     speed = std::clamp(speed, cfg.speed_min, cfg.speed_max);
@@ -99,7 +105,8 @@ CrkrResult crkr_learn(const system::System& system, const field::Situations& reg
       const auto prior = prior_club(field, region, q.target, pol.arrival, pol.bias, pol.ratio);
       pol.residuals.push_back({q.angle - prior[0], q.speed - prior[1]});
     }
-    while (next < checkpoints.size() && checkpoints[next] <= e + 1) res.checkpoint_policies.emplace_back(checkpoints[next++], pol);
+    while (next < checkpoints.size() && checkpoints[next] <= e + 1)
+      res.checkpoint_policies.emplace_back(checkpoints[next++], pol);
   }
   return res;
 }

@@ -5,7 +5,8 @@
 ///
 /// Policy over the situation s (the region's inputs) for the action a = (theta[, v]) as a
 /// residual from the prior (selfteach::prior_club with the measured launch relation):
-///   mean(s) = k(s)^T (K + lambda C)^-1 A,   var(s) = k(s, s) + lambda - k(s)^T (K + lambda C)^-1 k(s)
+///   mean(s) = k(s)^T (K + lambda C)^-1 A,   var(s) = k(s, s) + lambda - k(s)^T (K + lambda C)^-1
+///   k(s)
 /// with a Gaussian kernel on s, C = diag(costs) of the rollouts so far and A their residual
 /// actions. Each episode draws a situation from the region, explores with
 /// a ~ N(prior + mean(s), var(s) diag(sigma^2)), putts on the full system and records the cost
@@ -22,19 +23,19 @@
 namespace mg::selfteach {
 
 struct CrkrOptions {
-  int budget = 100;              ///< episodes = full-system putts (1..100000)
+  int budget = 100;  ///< episodes = full-system putts (1..100000)
   std::uint64_t seed = 1;
-  double lambda = 0.5;           ///< cost regularisation
-  double bandwidth = 0.0;        ///< [m] kernel width; 0: a quarter of the region's extent (>= 2 cm)
-  double sigma_angle = 0.01;     ///< [rad] exploration scale
-  double sigma_speed = 0.05;     ///< [m/s]
+  double lambda = 0.5;        ///< cost regularisation
+  double bandwidth = 0.0;     ///< [m] kernel width; 0: a quarter of the region's extent (>= 2 cm)
+  double sigma_angle = 0.01;  ///< [rad] exploration scale
+  double sigma_speed = 0.05;  ///< [m/s]
   std::vector<int> checkpoints;  ///< episode counts after which the policy is kept
   void validate() const;
 };
 
 /// A CrKR policy: the rollouts it regresses on.
 struct CrkrPolicy {
-  std::vector<std::array<double, 2>> holes;  ///< [m]
+  std::vector<std::array<double, 2>> holes;      ///< [m]
   std::vector<std::array<double, 2>> residuals;  ///< (angle, speed) - prior at the hole
   std::vector<double> costs;
   double lambda = 0.5, bandwidth = 0.1;

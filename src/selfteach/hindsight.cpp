@@ -11,11 +11,13 @@ namespace mg::selfteach {
 
 void HindsightRules::validate() const {
   if (!(arrival_speed > 0.0 && arrival_speed < 5.0))
-    throw InputError(fmt::format("hindsight: arrival speed: expected 0..5 m/s, got {}", arrival_speed));
+    throw InputError(
+        fmt::format("hindsight: arrival speed: expected 0..5 m/s, got {}", arrival_speed));
   if (!(spacing > 0.0 && spacing < 10.0))
     throw InputError(fmt::format("hindsight: spacing: expected 0..10 m, got {}", spacing));
   if (!(min_speed >= 0.0 && min_speed < arrival_speed))
-    throw InputError(fmt::format("hindsight: min_speed: expected 0..{} m/s, got {}", arrival_speed, min_speed));
+    throw InputError(
+        fmt::format("hindsight: min_speed: expected 0..{} m/s, got {}", arrival_speed, min_speed));
 }
 
 std::array<double, 4> region_bounds(const field::Situations& region) {
@@ -84,8 +86,8 @@ std::vector<Label> hindsight_labels(const std::vector<sim::BallSample>& path,
         const double s2 = s0 * s0 - 2.0 * std::max(0.0, rolling_decel) * d;
         if (s2 <= 0.0) break;
         const double s = std::sqrt(s2);
-        continued.push_back({last.t + d / (0.5 * (s0 + s)), last.x + ux * d, last.y + uy * d, last.z,
-                             ux * s, uy * s, 0.0});
+        continued.push_back({last.t + d / (0.5 * (s0 + s)), last.x + ux * d, last.y + uy * d,
+                             last.z, ux * s, uy * s, 0.0});
       }
     }
     n = continued.size();

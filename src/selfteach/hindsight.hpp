@@ -53,8 +53,8 @@ bool in_label_zone(const field::Situations& region, std::array<double, 2> p, dou
 /// sank labels its own target). Labels lie within `margin` of the region.
 std::vector<Label> hindsight_labels(const std::vector<sim::BallSample>& trajectory,
                                     std::array<double, 2> real_hole, double hole_radius,
-                                    double rolling_decel,
-                                    const field::Situations& region, double margin, double angle,
-                                    double speed, int putt, const HindsightRules& rules);
+                                    double rolling_decel, const field::Situations& region,
+                                    double margin, double angle, double speed, int putt,
+                                    const HindsightRules& rules);
 
 }  // namespace mg::selfteach

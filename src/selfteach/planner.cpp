@@ -29,8 +29,8 @@ Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::stri
   return x;
 }
 
-std::optional<stats::GpHyperparameters> fixed_residual_hyper(const field::Situations& region, int inputs,
-                                                             int output, int labels) {
+std::optional<stats::GpHyperparameters> fixed_residual_hyper(const field::Situations& region,
+                                                             int inputs, int output, int labels) {
   if (labels > kResidualLabelsToTune) return std::nullopt;
   const auto b = region_bounds(region);
   const double extent = std::max({b[1] - b[0], b[3] - b[2], 0.1});
@@ -44,9 +44,10 @@ std::optional<stats::GpHyperparameters> fixed_residual_hyper(const field::Situat
 /// The residual GP on (x, r) for output kind 0 (angle) or 1 (speed) with `labels` rows: the fixed
 /// hyperparameters while they apply, else fitted with length scales of at least a quarter of the
 /// region's extent.
-stats::GpModel residual_gp(const field::Situations& region, const Eigen::MatrixXd& x, const Eigen::VectorXd& r,
-                           int kind, Rng& rng) {
-  if (auto h = fixed_residual_hyper(region, static_cast<int>(x.cols()), kind, static_cast<int>(x.rows())))
+stats::GpModel residual_gp(const field::Situations& region, const Eigen::MatrixXd& x,
+                           const Eigen::VectorXd& r, int kind, Rng& rng) {
+  if (auto h = fixed_residual_hyper(region, static_cast<int>(x.cols()), kind,
+                                    static_cast<int>(x.rows())))
     return stats::make_gp_model(x, r, *h);
   const auto b = region_bounds(region);
   const double extent = std::max({b[1] - b[0], b[3] - b[2], 0.1});
@@ -60,24 +61,31 @@ stats::GpModel residual_gp(const field::Situations& region, const Eigen::MatrixX
 
 Planner::Planner(const system::System& system, const field::Situations& region, double arrival,
                  std::uint64_t seed, std::shared_ptr<const learning::Model> prior)
-    : sys_(system), region_(region), inputs_(region.learner_inputs()), arrival_(arrival),
-      rng_(derive_seed(seed, 11)), prior_model_(std::move(prior)) {
+    : sys_(system),
+      region_(region),
+      inputs_(region.learner_inputs()),
+      arrival_(arrival),
+      rng_(derive_seed(seed, 11)),
+      prior_model_(std::move(prior)) {
   outputs_ = region_.learn_speed ? 2 : 1;
   if (prior_model_) {
     const auto& m = *prior_model_;
     inputs_ = m.input_names;
-    if (output_index(m, "angle") < 0)
-      throw InputError("prior model: expected an output 'angle'");
+    if (output_index(m, "angle") < 0) throw InputError("prior model: expected an output 'angle'");
     if (region_.learn_speed && output_index(m, "speed") < 0)
-      throw InputError("prior model: the region learns the club speed, the model has no output 'speed'");
-    for (const auto& name : inputs_) (void)field::situation_input(sys_.field(), name, sys_.field().hole.position);
+      throw InputError(
+          "prior model: the region learns the club speed, the model has no output 'speed'");
+    for (const auto& name : inputs_)
+      (void)field::situation_input(sys_.field(), name, sys_.field().hole.position);
   }
 }
 
-std::vector<stats::GpHyperparameters> Planner::hyperparameters(const Eigen::MatrixXd& x, const Eigen::MatrixXd& r) {
+std::vector<stats::GpHyperparameters> Planner::hyperparameters(const Eigen::MatrixXd& x,
+                                                               const Eigen::MatrixXd& r) {
   std::vector<stats::GpHyperparameters> out;
   if (prior_model_) {
-    for (int o = 0; o < outputs_; ++o) out.push_back(residual_gp(region_, x, r.col(o), o, rng_).hyper);
+    for (int o = 0; o < outputs_; ++o)
+      out.push_back(residual_gp(region_, x, r.col(o), o, rng_).hyper);
     return out;
   }
   for (int o = 0; o < outputs_; ++o) {
@@ -111,7 +119,8 @@ void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> la
     if (!p.hit) continue;
     bool covered = false;
     for (std::size_t k = 0; k < real && !covered; ++k)
-      covered = std::hypot(labels[k].hole[0] - p.target[0], labels[k].hole[1] - p.target[1]) < kPseudoCover;
+      covered = std::hypot(labels[k].hole[0] - p.target[0], labels[k].hole[1] - p.target[1]) <
+                kPseudoCover;
     if (covered) continue;
     // With a model prior a putt that sank is moved by its Newton step towards the middle of the
     // window by at most the window's scale: the cup spoils its path (a fast ball that drops in
@@ -138,8 +147,10 @@ void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> la
   // Hyperparameters are re-chosen when the label count has grown by a third (a model prior:
   // every update while they are fixed); in between the last ones are reused (the GP is then
   // rebuilt exactly, only not re-tuned).
-  const bool fixed_phase = prior_model_ && fixed_residual_hyper(region_, 1, 0, static_cast<int>(n) - 1).has_value();
-  const bool refit = fixed_phase || hyper_.empty() || n >= fitted_at_ + std::max<Eigen::Index>(1, fitted_at_ / 3);
+  const bool fixed_phase =
+      prior_model_ && fixed_residual_hyper(region_, 1, 0, static_cast<int>(n) - 1).has_value();
+  const bool refit =
+      fixed_phase || hyper_.empty() || n >= fitted_at_ + std::max<Eigen::Index>(1, fitted_at_ / 3);
   if (refit) {
     hyper_ = hyperparameters(x, r);
     fitted_at_ = n;
@@ -158,9 +169,11 @@ Label Planner::pseudo_label(const PuttRecord& p, int index) const {
   l.putt = index;
   if (region_.learn_speed) {
     const double a_roll = 5.0 / 7.0 * f.rolling_resistance * 9.81;
-    const double e = p.approach_speed * p.approach_speed - 2.0 * a_roll * std::max(0.0, p.approach_along);
+    const double e =
+        p.approach_speed * p.approach_speed - 2.0 * a_roll * std::max(0.0, p.approach_along);
     const double rolling_per_club = 5.0 / 7.0 * ratio_;  // ball rolling speed per club speed
-    const double v2 = p.speed * p.speed - (e - arrival_ * arrival_) / (rolling_per_club * rolling_per_club);
+    const double v2 =
+        p.speed * p.speed - (e - arrival_ * arrival_) / (rolling_per_club * rolling_per_club);
     l.speed = std::clamp(std::sqrt(std::max(v2, 0.0)), 0.7 * p.speed, 1.3 * p.speed);
   }
   l.arrival_speed = arrival_;
@@ -174,8 +187,10 @@ std::array<double, 2> Planner::prior(std::array<double, 2> hole) const {
   const learning::Predictions p = learning::predict(m, q);
   const int ia = output_index(m, "angle"), is = output_index(m, "speed");
   double v = region_.speed;
-  if (is >= 0) v = p.mean(0, is);
-  else if (const double* fixed = m.fixed_value("speed")) v = *fixed;
+  if (is >= 0)
+    v = p.mean(0, is);
+  else if (const double* fixed = m.fixed_value("speed"))
+    v = *fixed;
   return {p.mean(0, ia), v};
 }
 
@@ -216,7 +231,8 @@ learning::Model Planner::residual_model(const std::vector<Label>& labels, int pu
   if (use.empty()) return m;  // nothing known yet: the prior as it is
   const auto n = static_cast<Eigen::Index>(use.size());
   Eigen::MatrixXd x(n, static_cast<Eigen::Index>(inputs_.size()));
-  for (Eigen::Index i = 0; i < n; ++i) x.row(i) = input_row(sys_.field(), inputs_, use[static_cast<std::size_t>(i)].hole).transpose();
+  for (Eigen::Index i = 0; i < n; ++i)
+    x.row(i) = input_row(sys_.field(), inputs_, use[static_cast<std::size_t>(i)].hole).transpose();
   const learning::Predictions base = learning::predict(m, x);
   learning::Model out;
   out.method = learning::Method::kGpr;

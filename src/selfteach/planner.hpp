@@ -46,8 +46,8 @@ Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::stri
 /// The residual GP hyperparameters for a model prior with `labels` labels on `region`, output
 /// `output` (0 angle, 1 speed): the fixed ones (see the file comment), or std::nullopt when they
 /// are to be fitted.
-std::optional<stats::GpHyperparameters> fixed_residual_hyper(const field::Situations& region, int inputs,
-                                                             int output, int labels);
+std::optional<stats::GpHyperparameters> fixed_residual_hyper(const field::Situations& region,
+                                                             int inputs, int output, int labels);
 
 class Planner {
  public:
@@ -84,7 +84,8 @@ class Planner {
 
  private:
   /// The residual GPs' hyperparameters for `labels` rows (fitted, or fixed with a model prior).
-  std::vector<stats::GpHyperparameters> hyperparameters(const Eigen::MatrixXd& x, const Eigen::MatrixXd& r);
+  std::vector<stats::GpHyperparameters> hyperparameters(const Eigen::MatrixXd& x,
+                                                        const Eigen::MatrixXd& r);
 
   const system::System& sys_;
   const field::Situations& region_;

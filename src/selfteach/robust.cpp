@@ -14,7 +14,8 @@
 namespace mg::selfteach {
 namespace {
 
-constexpr double kCentredCapture = 1.69;  ///< [m/s] centred lip-out, 108 mm x 60 mm cup (docs/physics.md)
+constexpr double kCentredCapture =
+    1.69;  ///< [m/s] centred lip-out, 108 mm x 60 mm cup (docs/physics.md)
 constexpr double kGravity = 9.81;
 
 std::array<double, 2> region_centre(const field::Situations& region) {
@@ -25,16 +26,21 @@ std::array<double, 2> region_centre(const field::Situations& region) {
 }  // namespace
 
 LaunchNoise measure_launch_noise(const system::System& system, const field::Situations& region,
-                                 double torque_noise, double position_std, int putts, std::uint64_t seed) {
-  if (putts < 2 || putts > 10000) throw InputError(fmt::format("noise measurement: putts: expected 2..10000, got {}", putts));
+                                 double torque_noise, double position_std, int putts,
+                                 std::uint64_t seed) {
+  if (putts < 2 || putts > 10000)
+    throw InputError(fmt::format("noise measurement: putts: expected 2..10000, got {}", putts));
   if (!(torque_noise >= 0.0 && torque_noise <= 0.1))
-    throw InputError(fmt::format("noise measurement: torque noise: expected 0..0.1, got {}", torque_noise));
+    throw InputError(
+        fmt::format("noise measurement: torque noise: expected 0..0.1, got {}", torque_noise));
   if (!(position_std >= 0.0 && position_std <= 0.1))
-    throw InputError(fmt::format("noise measurement: position std: expected 0..0.1 m, got {}", position_std));
+    throw InputError(
+        fmt::format("noise measurement: position std: expected 0..0.1 m, got {}", position_std));
   const auto& f = system.field();
   const auto hole = region_centre(region);
   const auto guess = teacher::prior_launch(f, hole, 0.4);
-  const double speed = region.learn_speed ? std::clamp(guess.speed / 1.6, system.config().speed_min, system.config().speed_max)
+  const double speed = region.learn_speed ? std::clamp(guess.speed / 1.6, system.config().speed_min,
+                                                       system.config().speed_max)
                                           : region.speed;
   system::SystemData data(system);
   std::vector<double> angles, speeds;
@@ -56,7 +62,8 @@ LaunchNoise measure_launch_noise(const system::System& system, const field::Situ
     for (double x : v) m += x;
     m /= static_cast<double>(v.size());
     for (double x : v) s += (x - m) * (x - m);
-    return std::array<double, 2>{m, std::sqrt(s / static_cast<double>(std::max<std::size_t>(1, v.size() - 1)))};
+    return std::array<double, 2>{
+        m, std::sqrt(s / static_cast<double>(std::max<std::size_t>(1, v.size() - 1)))};
   };
   if (angles.size() >= 2) {
     n.angle_std = stats(angles)[1];
@@ -66,8 +73,8 @@ LaunchNoise measure_launch_noise(const system::System& system, const field::Situ
   return n;
 }
 
-double sink_probability(const field::Field& field, double distance, double arrival, const LaunchNoise& noise,
-                        int draws, std::uint64_t seed) {
+double sink_probability(const field::Field& field, double distance, double arrival,
+                        const LaunchNoise& noise, int draws, std::uint64_t seed) {
   const double a = 5.0 / 7.0 * field.rolling_resistance * kGravity;
   const double radius = 0.5 * field.hole.diameter, ball = field.ball.radius;
   const double capture = kCentredCapture * std::clamp(field.hole.depth / 0.06, 0.5, 1.0);
@@ -78,7 +85,7 @@ double sink_probability(const field::Field& field, double distance, double arriv
   int sunk = 0;
   for (int k = 0; k < draws; ++k) {
     const double dtheta = noise.angle_std * n(rng), du = noise.speed_rel_std * n(rng);
-    const double e_lat = noise.position_std * std::sqrt(2.0) * n(rng);    // hole and ball errors
+    const double e_lat = noise.position_std * std::sqrt(2.0) * n(rng);  // hole and ball errors
     const double e_along = noise.position_std * std::sqrt(2.0) * n(rng);
     const double b = distance * dtheta + e_lat;
     const double s2 = arrival * arrival + 2.0 * rolling2 * du + 2.0 * a * e_along;
@@ -90,7 +97,8 @@ double sink_probability(const field::Field& field, double distance, double arriv
   return static_cast<double>(sunk) / draws;
 }
 
-double robust_arrival_speed(const field::Field& field, const field::Situations& region, const LaunchNoise& noise) {
+double robust_arrival_speed(const field::Field& field, const field::Situations& region,
+                            const LaunchNoise& noise) {
   const auto c = region_centre(region);
   const double distance = std::hypot(c[0] - field.tee[0], c[1] - field.tee[1]);
   double best = 0.2, best_p = -1.0;

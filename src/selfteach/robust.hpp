@@ -9,7 +9,8 @@
 ///   launch angle std sigma_theta [rad] and relative launch speed std sigma_u (practice putts at
 ///   one club setting under the execution noise), the perceived hole's std sigma_p [m] per axis —
 /// a putt aimed at a hole at distance D arriving at s gives, to first order,
-///   lateral offset  b = D dtheta + e_lat,     arrival  s_h^2 = s^2 + 2 (5/7 u)^2 du/u + 2 a e_along
+///   lateral offset  b = D dtheta + e_lat,     arrival  s_h^2 = s^2 + 2 (5/7 u)^2 du/u + 2 a
+///   e_along
 /// (u the launch speed, a the rolling deceleration, e the hole's position error), and sinks when
 /// the ball reaches the cup (s_h^2 > -2 a (R - r)) slower than the capture speed at its offset,
 ///   v_c(b) = v_c0 sqrt(1 - (b / R)^2),  v_c0 = 1.69 m/s (the measured centred lip-out of the
@@ -35,14 +36,16 @@ struct LaunchNoise {
 /// Measures the launch scatter under `torque_noise` with `putts` practice putts (>= 2) at the
 /// region's centre (club speed from the prior); `position_std` is passed through.
 LaunchNoise measure_launch_noise(const system::System& system, const field::Situations& region,
-                                 double torque_noise, double position_std, int putts, std::uint64_t seed);
+                                 double torque_noise, double position_std, int putts,
+                                 std::uint64_t seed);
 
 /// P(sink) of arriving at `arrival` [m/s] at a hole `distance` [m] away under `noise`.
-double sink_probability(const field::Field& field, double distance, double arrival, const LaunchNoise& noise,
-                        int draws = 4000, std::uint64_t seed = 1);
+double sink_probability(const field::Field& field, double distance, double arrival,
+                        const LaunchNoise& noise, int draws = 4000, std::uint64_t seed = 1);
 
 /// The arrival speed in [0.2, 1.2] m/s (steps of 0.05) maximising sink_probability at the
 /// region's mean distance; the smallest on ties.
-double robust_arrival_speed(const field::Field& field, const field::Situations& region, const LaunchNoise& noise);
+double robust_arrival_speed(const field::Field& field, const field::Situations& region,
+                            const LaunchNoise& noise);
 
 }  // namespace mg::selfteach

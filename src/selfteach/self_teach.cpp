@@ -18,27 +18,33 @@ namespace mg::selfteach {
 
 void SelfTeachOptions::validate() const {
   if (budget < 1 || budget > 100000)
-    throw InputError(fmt::format("self-teach: budget: expected 1..100000 full-system putts, got {}", budget));
+    throw InputError(
+        fmt::format("self-teach: budget: expected 1..100000 full-system putts, got {}", budget));
   if (batch < 1 || batch > 64)
-    throw InputError(fmt::format("self-teach: batch: expected 1..64 putts per round, got {}", batch));
+    throw InputError(
+        fmt::format("self-teach: batch: expected 1..64 putts per round, got {}", batch));
   if (candidates < 1 || candidates > 100000)
     throw InputError(fmt::format("self-teach: candidates: expected 1..100000, got {}", candidates));
   if (!(arrival_speed >= 0.0 && arrival_speed <= 2.0))
-    throw InputError(fmt::format("self-teach: arrival speed: expected 0..2 m/s (0: the strategy's), got {}", arrival_speed));
+    throw InputError(fmt::format(
+        "self-teach: arrival speed: expected 0..2 m/s (0: the strategy's), got {}", arrival_speed));
   if (!(record_interval > 0.0 && record_interval <= 0.05))
-    throw InputError(fmt::format("self-teach: record_interval: expected 0..0.05 s, got {}", record_interval));
+    throw InputError(
+        fmt::format("self-teach: record_interval: expected 0..0.05 s, got {}", record_interval));
   for (int c : checkpoints)
     if (c < 1 || c > budget)
-      throw InputError(fmt::format("self-teach: checkpoint {}: expected 1..budget ({})", c, budget));
+      throw InputError(
+          fmt::format("self-teach: checkpoint {}: expected 1..budget ({})", c, budget));
 }
 
 namespace {
 
-constexpr double kElasticRatio = 1.6;   ///< launch / club speed before any putt: (1 + e), e = 0.6
-constexpr double kOnTarget = 0.01;      ///< [m] a label this close to its own target is checked
-constexpr double kBatchSpread = 0.05;   ///< [m] targets of one round keep apart by about this
+constexpr double kElasticRatio = 1.6;  ///< launch / club speed before any putt: (1 + e), e = 0.6
+constexpr double kOnTarget = 0.01;     ///< [m] a label this close to its own target is checked
+constexpr double kBatchSpread = 0.05;  ///< [m] targets of one round keep apart by about this
 constexpr std::size_t kMaxTrainingLabels = 400;
-constexpr double kTriedRadius = 0.03;   ///< [m] an earlier target this close halves a candidate's score  ///< GPR cost: thinned evenly beyond this
+constexpr double kTriedRadius = 0.03;  ///< [m] an earlier target this close halves a candidate's
+                                       ///< score  ///< GPR cost: thinned evenly beyond this
 
 double median(std::vector<double> v, double fallback) {
   if (v.empty()) return fallback;
@@ -64,7 +70,8 @@ std::vector<std::array<double, 2>> candidate_targets(const field::Situations& re
 }  // namespace
 
 std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,
-                                 std::array<double, 2> hole, double arrival, double bias, double ratio) {
+                                 std::array<double, 2> hole, double arrival, double bias,
+                                 double ratio) {
   const auto g = teacher::prior_launch(field, hole, arrival);
   return {g.angle - bias, region.learn_speed ? g.speed / ratio : region.speed};
 }
@@ -102,13 +109,16 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
   for (const auto& l : labels)
     if (putts < 0 || l.putt < putts) use.push_back(&l);
   if (use.size() < 2)
-    throw InputError(fmt::format("self-teach: field '{}': {} hindsight label(s) in the region after {} "
-                                 "putts (need 2): no label yet; give a larger budget (if many putts find none, its holes are out "
-                                 "of the robot's reach)",
-                                 system.field().name, use.size(), putts < 0 ? 0 : putts));
+    throw InputError(
+        fmt::format("self-teach: field '{}': {} hindsight label(s) in the region after {} "
+                    "putts (need 2): no label yet; give a larger budget (if many putts find none, "
+                    "its holes are out "
+                    "of the robot's reach)",
+                    system.field().name, use.size(), putts < 0 ? 0 : putts));
   if (use.size() > kMaxTrainingLabels) {
     std::vector<const Label*> thin;
-    for (std::size_t k = 0; k < kMaxTrainingLabels; ++k) thin.push_back(use[k * use.size() / kMaxTrainingLabels]);
+    for (std::size_t k = 0; k < kMaxTrainingLabels; ++k)
+      thin.push_back(use[k * use.size() / kMaxTrainingLabels]);
     use = std::move(thin);
   }
   learning::Dataset d;
@@ -144,9 +154,10 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
   const auto& field = system.field();
   HindsightRules rules;
   rules.learn_speed = region.learn_speed;
-  rules.arrival_speed = options.arrival_speed > 0.0
-                            ? options.arrival_speed
-                            : teacher::arrival_speed(field, teacher::parse_strategy(region.strategy));
+  rules.arrival_speed =
+      options.arrival_speed > 0.0
+          ? options.arrival_speed
+          : teacher::arrival_speed(field, teacher::parse_strategy(region.strategy));
   const double margin = label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
   const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
@@ -156,8 +167,9 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
   Planner planner(system, region, rules.arrival_speed, options.seed, options.prior);
   // With a prior model the result is a residual over it (real labels only); else GPR on labels.
   const auto learned = [&](int putts) {
-    return planner.has_model_prior() ? planner.residual_model(res.labels, putts)
-                                     : model_from_labels(system, region, res.labels, putts, options.seed);
+    return planner.has_model_prior()
+               ? planner.residual_model(res.labels, putts)
+               : model_from_labels(system, region, res.labels, putts, options.seed);
   };
   const auto candidates = candidate_targets(region, options.candidates, options.seed);
   std::vector<std::array<double, 2>> tried;
@@ -171,11 +183,11 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
     res.labels.clear();
     for (std::size_t i = 0; i < res.putts.size(); ++i) {
       auto& p = res.putts[i];
-      const auto ls = hindsight_labels(res.paths[i], p.target, hole_radius, rolling_decel, region, margin, p.angle,
-                                       p.speed, static_cast<int>(i), rules);
+      const auto ls = hindsight_labels(res.paths[i], p.target, hole_radius, rolling_decel, region,
+                                       margin, p.angle, p.speed, static_cast<int>(i), rules);
       p.labels = static_cast<int>(ls.size());
-      p.label_distance = ls.empty() ? -1.0
-                                    : std::hypot(ls[0].hole[0] - p.target[0], ls[0].hole[1] - p.target[1]);
+      p.label_distance =
+          ls.empty() ? -1.0 : std::hypot(ls[0].hole[0] - p.target[0], ls[0].hole[1] - p.target[1]);
       res.labels.insert(res.labels.end(), ls.begin(), ls.end());
     }
   };
@@ -209,22 +221,22 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
       plans.push_back(best_plan);
     }
     std::vector<control::FullPuttResult> results(static_cast<std::size_t>(round));
-    system::parallel_for(system, round, system::thread_count(options.threads),
-                         [&](int i, system::SystemData& data) {
-                           const auto k = static_cast<std::size_t>(i);
-                           control::FullPuttOptions po;
-                           po.record_interval = options.record_interval;
-                           results[k] = system::arm_putt(system, data, targets[k], plans[k][0],
-                                                         plans[k][1], po);
-                         });
+    system::parallel_for(
+        system, round, system::thread_count(options.threads), [&](int i, system::SystemData& data) {
+          const auto k = static_cast<std::size_t>(i);
+          control::FullPuttOptions po;
+          po.record_interval = options.record_interval;
+          results[k] = system::arm_putt(system, data, targets[k], plans[k][0], plans[k][1], po);
+        });
     for (int b = 0; b < round; ++b) {
       const auto k = static_cast<std::size_t>(b);
       const auto& r = results[k];
       PuttRecord p = record_putt(targets[k], plans[k][0], plans[k][1], r);
       const int index = static_cast<int>(res.putts.size());
-      const auto ls = r.hit ? hindsight_labels(r.outcome.trajectory, p.target, hole_radius, rolling_decel, region,
-                                               margin, p.angle, p.speed, index, rules)
-                            : std::vector<Label>{};
+      const auto ls =
+          r.hit ? hindsight_labels(r.outcome.trajectory, p.target, hole_radius, rolling_decel,
+                                   region, margin, p.angle, p.speed, index, rules)
+                : std::vector<Label>{};
       p.labels = static_cast<int>(ls.size());
       if (!ls.empty())
         p.label_distance = std::hypot(ls[0].hole[0] - p.target[0], ls[0].hole[1] - p.target[1]);
@@ -235,13 +247,15 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
       tried.push_back(p.target);
       if (p.label_distance >= 0.0 && p.label_distance < kOnTarget) {
         ++res.on_target;
-        if (p.sunk) ++res.on_target_sunk;
-        else ++failed_checks;
+        if (p.sunk)
+          ++res.on_target_sunk;
+        else
+          ++failed_checks;
       }
     }
     // Labels at their own targets that did not sink: s* is too fast for this cup.
-    if (rules.learn_speed && failed_checks >= 2 &&
-        res.on_target_sunk < 0.9 * res.on_target && rules.arrival_speed > 0.2) {
+    if (rules.learn_speed && failed_checks >= 2 && res.on_target_sunk < 0.9 * res.on_target &&
+        rules.arrival_speed > 0.2) {
       rules.arrival_speed = std::max(0.2, 0.85 * rules.arrival_speed);
       planner.set_arrival(rules.arrival_speed);
       ++res.arrival_corrections;

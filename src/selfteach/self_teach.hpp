@@ -40,15 +40,15 @@
 namespace mg::selfteach {
 
 struct SelfTeachOptions {
-  int budget = 100;               ///< full-system putts, misses included (1..100000)
+  int budget = 100;  ///< full-system putts, misses included (1..100000)
   std::uint64_t seed = 1;
-  int batch = 1;                  ///< putts chosen together per round (1..64), played in parallel
-  int threads = 0;                ///< 0: all cores
-  int candidates = 300;           ///< random candidate targets (plus centre and collection points)
+  int batch = 1;         ///< putts chosen together per round (1..64), played in parallel
+  int threads = 0;       ///< 0: all cores
+  int candidates = 300;  ///< random candidate targets (plus centre and collection points)
   /// [m/s] the arrival speed s* to learn (angle-and-speed regions); 0: the region's strategy's
   /// (teacher::arrival_speed). robust_arrival_speed chooses one for a measured noise.
   double arrival_speed = 0.0;
-  double record_interval = 0.005; ///< [s] ball path sampling
+  double record_interval = 0.005;  ///< [s] ball path sampling
   /// Putt counts after which the model is also trained and kept (learning curves); the model
   /// after k putts is the model a budget of k would give.
   std::vector<int> checkpoints;
@@ -56,7 +56,7 @@ struct SelfTeachOptions {
   /// prediction instead of the physical one, and the model written is a residual over it
   /// (selfteach/planner.hpp). nullptr: from scratch.
   std::shared_ptr<const learning::Model> prior;
-  void validate() const;          ///< InputError naming the field
+  void validate() const;  ///< InputError naming the field
 };
 
 /// One of the robot's own putts.
@@ -64,27 +64,28 @@ struct PuttRecord {
   std::array<double, 2> target{0, 0};  ///< [m] where the hole was
   double angle = 0.0, speed = 0.0;     ///< [rad], [m/s] what it hit
   bool hit = false, sunk = false;
-  double closest_approach = 0.0;       ///< [m]
+  double closest_approach = 0.0;                  ///< [m]
   double launch_angle = 0.0, launch_speed = 0.0;  ///< measured ball launch
-  /// How the ball met the hole (sim::PuttOutcome): speed [m/s], lateral offset and how far short [m].
+  /// How the ball met the hole (sim::PuttOutcome): speed [m/s], lateral offset and how far short
+  /// [m].
   double approach_speed = 0.0, approach_lateral = 0.0, approach_along = 0.0;
-  int labels = 0;                      ///< hindsight labels it gave (at the final s*)
-  double label_distance = -1.0;        ///< [m] of its (first) label to its target; -1: none
+  int labels = 0;                ///< hindsight labels it gave (at the final s*)
+  double label_distance = -1.0;  ///< [m] of its (first) label to its target; -1: none
 };
 
 struct SelfTeachResult {
   /// False: fewer than two labels in the budget (the region is out of the robot's reach: the
   /// field is unplayable for it); `model` is then empty.
   bool trained = false;
-  learning::Model model;                ///< trained on `labels`
-  std::vector<Label> labels;            ///< at the final s*
-  std::vector<PuttRecord> putts;        ///< in order
+  learning::Model model;                            ///< trained on `labels`
+  std::vector<Label> labels;                        ///< at the final s*
+  std::vector<PuttRecord> putts;                    ///< in order
   std::vector<std::vector<sim::BallSample>> paths;  ///< each putt's ball path from the launch
   std::vector<std::pair<int, learning::Model>> checkpoint_models;  ///< (putts, model)
-  double arrival_speed = 0.0;           ///< final s* [m/s] (angle and speed regions)
-  int arrival_corrections = 0;          ///< times s* was lowered
+  double arrival_speed = 0.0;             ///< final s* [m/s] (angle and speed regions)
+  int arrival_corrections = 0;            ///< times s* was lowered
   int on_target = 0, on_target_sunk = 0;  ///< putts labelled within 1 cm of their own target
-  int sunk = 0;                         ///< putts that sank while teaching
+  int sunk = 0;                           ///< putts that sank while teaching
 };
 
 /// Learns `region` of `system`'s field (see the file comment). `progress(done, budget)` after each
@@ -103,7 +104,8 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
 /// relation (launch angle - theta = `bias` [rad], launch speed / club speed = `ratio`); the
 /// region's fixed speed for angle-only regions.
 std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,
-                                 std::array<double, 2> hole, double arrival, double bias, double ratio);
+                                 std::array<double, 2> hole, double arrival, double bias,
+                                 double ratio);
 /// The record of a putt (angle, speed) at `target` with result `r` (labels not yet counted).
 PuttRecord record_putt(std::array<double, 2> target, double angle, double speed,
                        const control::FullPuttResult& r);

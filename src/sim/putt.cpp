@@ -23,10 +23,14 @@ void PuttRequest::validate() const {
 
 std::string to_string(PuttEnd end) {
   switch (end) {
-    case PuttEnd::kSunk: return "sunk";
-    case PuttEnd::kAtRest: return "at_rest";
-    case PuttEnd::kTimeOut: return "time_out";
-    case PuttEnd::kLeftLane: return "left_lane";
+    case PuttEnd::kSunk:
+      return "sunk";
+    case PuttEnd::kAtRest:
+      return "at_rest";
+    case PuttEnd::kTimeOut:
+      return "time_out";
+    case PuttEnd::kLeftLane:
+      return "left_lane";
   }
   return "unknown";
 }

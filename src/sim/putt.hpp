@@ -11,22 +11,22 @@ namespace mg::sim {
 
 /// What to simulate.
 struct PuttRequest {
-  double angle = 0.0;   ///< [rad] counter-clockwise from +x (the default hitting direction)
-  double speed = 1.0;   ///< [m/s] launch speed along the surface, no spin (the ball slides first)
+  double angle = 0.0;  ///< [rad] counter-clockwise from +x (the default hitting direction)
+  double speed = 1.0;  ///< [m/s] launch speed along the surface, no spin (the ball slides first)
   /// Where the ball starts (default: the field's tee) [m].
   std::optional<std::array<double, 2>> start;
   /// Start already rolling (spin matched to the speed) instead of sliding without spin.
   bool rolling_start = false;
-  double max_duration = 30.0;        ///< [s] give up after this much simulated time
-  double record_interval = 0.0;      ///< [s] trajectory sample spacing; 0 = no trajectory
+  double max_duration = 30.0;    ///< [s] give up after this much simulated time
+  double record_interval = 0.0;  ///< [s] trajectory sample spacing; 0 = no trajectory
   void validate() const;
 };
 
 /// One trajectory sample, world frame.
 struct BallSample {
-  double t;               ///< [s]
-  double x, y, z;         ///< ball centre [m]
-  double vx, vy, vz;      ///< [m/s]
+  double t;           ///< [s]
+  double x, y, z;     ///< ball centre [m]
+  double vx, vy, vz;  ///< [m/s]
 };
 
 enum class PuttEnd { kSunk, kAtRest, kTimeOut, kLeftLane };
@@ -46,8 +46,8 @@ struct PuttOutcome {
   double approach_speed = 0.0;
   double approach_lateral = 0.0;
   double approach_along = 0.0;
-  double duration = 0.0;          ///< simulated time until the outcome was decided [s]
-  int steps = 0;                  ///< physics steps taken
+  double duration = 0.0;  ///< simulated time until the outcome was decided [s]
+  int steps = 0;          ///< physics steps taken
   std::vector<BallSample> trajectory;
 };
 
@@ -55,8 +55,8 @@ std::string to_string(PuttEnd end);
 
 /// Decides when a putt is over (shared by the ball-only path and, later, the arm).
 struct OutcomeRules {
-  double rest_speed = 0.005;     ///< [m/s] below this the ball counts as still
-  double rest_time = 0.1;        ///< [s] ... for this long
+  double rest_speed = 0.005;  ///< [m/s] below this the ball counts as still
+  double rest_time = 0.1;     ///< [s] ... for this long
   /// A ball that has dropped into the cup (centre below its rolling height by half the depth,
   /// capped at half its radius) and stays there this long is holed, even if it keeps rolling
   /// around a shallow cup. [s]

@@ -76,7 +76,8 @@ std::string world_mjcf(const field::Field& f, const WorldOptions& o, const std::
   double z_min = 1e9, z_max = -1e9;
   for (int r = 0; r < nrow; ++r)
     for (int c = 0; c < ncol; ++c) {
-      const double z = f.height(b[0] + (b[1] - b[0]) * c / (ncol - 1), b[2] + (b[3] - b[2]) * r / (nrow - 1));
+      const double z =
+          f.height(b[0] + (b[1] - b[0]) * c / (ncol - 1), b[2] + (b[3] - b[2]) * r / (nrow - 1));
       z_min = std::min(z_min, z);
       z_max = std::max(z_max, z);
     }
@@ -111,17 +112,18 @@ std::string world_mjcf(const field::Field& f, const WorldOptions& o, const std::
             solref="{} 1"/>
     </body>
 )",
-                   f.name, o.timestep, -kGravity, "elliptic", 10, pairs.empty() ? "all" : "predefined",
-                   kUserSize, nrow, ncol, rx, ry,
-                   elevation, cx, cy, cx, cy, z_min, heightfield ? kLaneGroup : 0, kNoAffinity,
+                   f.name, o.timestep, -kGravity, "elliptic", 10,
+                   pairs.empty() ? "all" : "predefined", kUserSize, nrow, ncol, rx, ry, elevation,
+                   cx, cy, cx, cy, z_min, heightfield ? kLaneGroup : 0, kNoAffinity,
                    f.sliding_friction, o.ground_time_constant, f.tee[0], f.tee[1],
                    f.height(f.tee[0], f.tee[1]), heightfield ? 0 : kLaneGroup, kNoAffinity,
                    f.sliding_friction, o.ground_time_constant);
   const auto wall = [&](const char* name, double px, double py, double hx, double hy) {
-    x += fmt::format(R"(    <geom name="{}" type="box" pos="{} {} {}" size="{} {} {}" rgba="0.45 0.3 0.2 1"
+    x += fmt::format(
+        R"(    <geom name="{}" type="box" pos="{} {} {}" size="{} {} {}" rgba="0.45 0.3 0.2 1"
           contype="{}" conaffinity="{}" condim="3" priority="1" friction="0.2 0 0" solref="0.004 {}"/>
 )",
-                     name, px, py, wall_cz, hx, hy, wall_hz, kLaneGroup, kNoAffinity, wall_zeta);
+        name, px, py, wall_cz, hx, hy, wall_hz, kLaneGroup, kNoAffinity, wall_zeta);
   };
   wall("border_x_min", b[0] - 0.5 * wall_t, cy, 0.5 * wall_t, ry + wall_t);
   wall("border_x_max", b[1] + 0.5 * wall_t, cy, 0.5 * wall_t, ry + wall_t);
@@ -150,15 +152,17 @@ std::string world_mjcf(const field::Field& f, const WorldOptions& o, const std::
     const double rc = one_body ? hole_r + 0.5 * seg_t : 0.0;
     if (!one_body)
       x += fmt::format(R"(    <body name="hole_wall_{}" mocap="true" pos="0 0 {}">
-)", i, z_min - 1.0);
-    x += fmt::format(R"(      <geom name="hole_wall_{}" type="box" size="{} {} {}" pos="{} {} {}" quat="{} 0 0 {}"
+)",
+                       i, z_min - 1.0);
+    x += fmt::format(
+        R"(      <geom name="hole_wall_{}" type="box" size="{} {} {}" pos="{} {} {}" quat="{} 0 0 {}"
             rgba="0.1 0.1 0.1 1" contype="{}" conaffinity="{}" condim="3" priority="1"
             friction="0.3 0 0" solref="0.004 {}"/>
 )",
-                     i, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, rc * std::cos(phi),
-                     rc * std::sin(phi), -0.5 * f.hole.depth, one_body ? std::cos(0.5 * phi) : 1.0,
-                     one_body ? std::sin(0.5 * phi) : 0.0, kCupGroup, kNoAffinity,
-                     damping_ratio_for_restitution(o.cup_restitution));
+        i, 0.5 * seg_t, seg_half, 0.5 * f.hole.depth, rc * std::cos(phi), rc * std::sin(phi),
+        -0.5 * f.hole.depth, one_body ? std::cos(0.5 * phi) : 1.0,
+        one_body ? std::sin(0.5 * phi) : 0.0, kCupGroup, kNoAffinity,
+        damping_ratio_for_restitution(o.cup_restitution));
     if (!one_body) x += "    </body>\n";
   }
   if (one_body) x += "    </body>\n";
@@ -185,7 +189,8 @@ std::string world_mjcf(const field::Field& f, const WorldOptions& o, const std::
   for (const auto& body : o.extra_bodies_off_ball) exclude("ball", body);
   x += pairs;
   x += "  </contact>\n";
-  if (!o.extra_actuator_mjcf.empty()) x += "  <actuator>\n" + o.extra_actuator_mjcf + "  </actuator>\n";
+  if (!o.extra_actuator_mjcf.empty())
+    x += "  <actuator>\n" + o.extra_actuator_mjcf + "  </actuator>\n";
   x += "</mujoco>\n";
   return x;
 }
@@ -242,7 +247,8 @@ std::string predefined_pairs(const mjModel* m) {
             (m->geom_contype[g2] & m->geom_conaffinity[g1])))
         continue;
       if (excluded(b1, b2)) continue;
-      pairs.push_back(b1 < b2 ? Pair{b1, b2, g1, g2, pairs.size()} : Pair{b2, b1, g2, g1, pairs.size()});
+      pairs.push_back(b1 < b2 ? Pair{b1, b2, g1, g2, pairs.size()}
+                              : Pair{b2, b1, g2, g1, pairs.size()});
     }
   // std::sort with a total order: std::stable_sort's temporary buffer (operator new, freed by
   // libstdc++ 12 through free) is an alloc-dealloc mismatch under AddressSanitizer.
@@ -273,11 +279,14 @@ std::string predefined_pairs(const mjModel* m) {
                          : s1 < mjMINVAL                  ? 0.0
                                                           : 1.0;
       for (int i = 0; i < mjNREF; ++i)
-        solref[i] = m->geom_solref[mjNREF * g1] > 0 && m->geom_solref[mjNREF * g2] > 0
-                        ? mix * m->geom_solref[mjNREF * g1 + i] + (1 - mix) * m->geom_solref[mjNREF * g2 + i]
-                        : std::min(m->geom_solref[mjNREF * g1 + i], m->geom_solref[mjNREF * g2 + i]);
+        solref[i] =
+            m->geom_solref[mjNREF * g1] > 0 && m->geom_solref[mjNREF * g2] > 0
+                ? mix * m->geom_solref[mjNREF * g1 + i] +
+                      (1 - mix) * m->geom_solref[mjNREF * g2 + i]
+                : std::min(m->geom_solref[mjNREF * g1 + i], m->geom_solref[mjNREF * g2 + i]);
       for (int i = 0; i < mjNIMP; ++i)
-        solimp[i] = mix * m->geom_solimp[mjNIMP * g1 + i] + (1 - mix) * m->geom_solimp[mjNIMP * g2 + i];
+        solimp[i] =
+            mix * m->geom_solimp[mjNIMP * g1 + i] + (1 - mix) * m->geom_solimp[mjNIMP * g2 + i];
     }
     friction[1] = friction[0];
     friction[3] = friction[4];
@@ -374,9 +383,10 @@ void World::set_hole(mjData* d, std::array<double, 2> p) const {
   const auto g = field_.surface.gradient(p[0], p[1]);
   const double rim_drop = std::hypot(g[0], g[1]) * r;
   if (rim_drop + 0.002 > field_.hole.depth)
-    throw InputError(fmt::format("hole position: ground at ({}, {}) is too steep for a hole {} m "
-                                 "deep (the rim drops {:.3f} m across it)",
-                                 p[0], p[1], field_.hole.depth, rim_drop));
+    throw InputError(
+        fmt::format("hole position: ground at ({}, {}) is too steep for a hole {} m "
+                    "deep (the rim drops {:.3f} m across it)",
+                    p[0], p[1], field_.hole.depth, rim_drop));
   d->userdata[kUserHoleX] = p[0];
   d->userdata[kUserHoleY] = p[1];
   d->userdata[kUserHoleRadius] = r;
@@ -539,7 +549,8 @@ void World::step_with(const mjModel* m, mjData* d) const {
     const mjtNum slip_normal = mju_dot3(slip, normal);
     for (int k = 0; k < 3; ++k) slip[k] -= slip_normal * normal[k];
     const double rolling = std::clamp(
-        (options_.rolling_slip_limit - mju_norm3(slip)) / (0.5 * options_.rolling_slip_limit), 0.0, 1.0);
+        (options_.rolling_slip_limit - mju_norm3(slip)) / (0.5 * options_.rolling_slip_limit), 0.0,
+        1.0);
     if (spin > 0.0 && rolling > 0.0) {
       const double magnitude = rolling * field_.rolling_resistance * field_.ball.radius *
                                normal_force * std::min(1.0, spin / options_.resistance_smoothing);

@@ -50,8 +50,8 @@ enum class CupBodies {
 /// Simulation settings shared by every world.
 struct WorldOptions {
   GroundContact ground = GroundContact::kTangentPlane;
-  double timestep = 0.001;   ///< [s]; PHYSICS.md: at or under 1 ms for a small fast sphere
-  int hole_segments = 24;    ///< cup wall made of this many boxes
+  double timestep = 0.001;  ///< [s]; PHYSICS.md: at or under 1 ms for a small fast sphere
+  int hole_segments = 24;   ///< cup wall made of this many boxes
   CupBodies cup = CupBodies::kOne;
   /// Below this rolling speed the resistance torque is scaled down linearly, so a resting ball
   /// does not chatter (a regularised Coulomb law). [rad/s]
@@ -81,12 +81,12 @@ struct WorldOptions {
 struct WorldIds {
   int ball_body = -1;
   int ball_geom = -1;
-  int ball_qpos = -1;  ///< first of 7 qpos of the ball's free joint
-  int ball_dof = -1;   ///< first of 6 dofs
-  int ground_geom = -1;     ///< what the ball rolls on: the tangent box or the heightfield
+  int ball_qpos = -1;    ///< first of 7 qpos of the ball's free joint
+  int ball_dof = -1;     ///< first of 6 dofs
+  int ground_geom = -1;  ///< what the ball rolls on: the tangent box or the heightfield
   int ground_mocap = -1;
-  int surface_geom = -1;    ///< the heightfield (drawn; collides only in kHeightfield mode)
-  int hole_mocap = -1;        ///< the cup's body (kOne) or the floor's (kPerSegment)
+  int surface_geom = -1;  ///< the heightfield (drawn; collides only in kHeightfield mode)
+  int hole_mocap = -1;    ///< the cup's body (kOne) or the floor's (kPerSegment)
   int hole_floor_geom = -1;
   int first_wall_geom = -1;   ///< cup wall segments are consecutive geoms
   int first_wall_mocap = -1;  ///< kPerSegment: their consecutive bodies (kOne: -1)

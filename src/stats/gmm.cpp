@@ -5,8 +5,8 @@
 #include <limits>
 #include <numbers>
 
-#include <Eigen/Cholesky>
 #include <fmt/format.h>
+#include <Eigen/Cholesky>
 
 #include "core/error.hpp"
 #include "stats/linalg.hpp"
@@ -16,12 +16,14 @@ namespace {
 
 void require_data(const Eigen::MatrixXd& data, int num_components, const char* who) {
   if (data.rows() == 0 || data.cols() == 0)
-    throw InputError(fmt::format("{}: expected a non-empty N x D data matrix, got {} x {}", who, data.rows(),
-                                 data.cols()));
-  if (!data.allFinite()) throw InputError(fmt::format("{}: data: expected finite values, got NaN or inf", who));
+    throw InputError(fmt::format("{}: expected a non-empty N x D data matrix, got {} x {}", who,
+                                 data.rows(), data.cols()));
+  if (!data.allFinite())
+    throw InputError(fmt::format("{}: data: expected finite values, got NaN or inf", who));
   if (num_components < 1 || num_components > data.rows())
-    throw InputError(fmt::format("{}: number of components: expected 1..{} (the number of samples), got {}",
-                                 who, data.rows(), num_components));
+    throw InputError(
+        fmt::format("{}: number of components: expected 1..{} (the number of samples), got {}", who,
+                    data.rows(), num_components));
 }
 
 // Log densities log(pi_k N(x_n; mu_k, Sigma_k)), (N x K).
@@ -34,10 +36,13 @@ Eigen::MatrixXd weighted_log_densities(const Gmm& gmm, const Eigen::MatrixXd& da
   for (int k = 0; k < k_count; ++k) {
     const Eigen::MatrixXd l = robust_cholesky(gmm.covariances[static_cast<std::size_t>(k)]);
     const double log_det = 2.0 * l.diagonal().array().log().sum();
-    Eigen::MatrixXd diff = (data.rowwise() - gmm.means[static_cast<std::size_t>(k)].transpose()).transpose();
+    Eigen::MatrixXd diff =
+        (data.rowwise() - gmm.means[static_cast<std::size_t>(k)].transpose()).transpose();
     l.triangularView<Eigen::Lower>().solveInPlace(diff);
     const double log_prior = std::log(gmm.priors(k));
-    out.col(k) = (-0.5 * (diff.colwise().squaredNorm().array() + d * log_2pi + log_det) + log_prior).matrix().transpose();
+    out.col(k) = (-0.5 * (diff.colwise().squaredNorm().array() + d * log_2pi + log_det) + log_prior)
+                     .matrix()
+                     .transpose();
   }
   return out;
 }
@@ -55,7 +60,8 @@ double uniform01(mg::Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0
 Eigen::MatrixXd kmeans_pp_seed(const Eigen::MatrixXd& data, int k_count, mg::Rng& rng) {
   const Eigen::Index n = data.rows();
   Eigen::MatrixXd centers(k_count, data.cols());
-  Eigen::Index first = std::min<Eigen::Index>(static_cast<Eigen::Index>(uniform01(rng) * static_cast<double>(n)), n - 1);
+  Eigen::Index first = std::min<Eigen::Index>(
+      static_cast<Eigen::Index>(uniform01(rng) * static_cast<double>(n)), n - 1);
   centers.row(0) = data.row(first);
   Eigen::VectorXd d2 = (data.rowwise() - centers.row(0)).rowwise().squaredNorm();
   for (int k = 1; k < k_count; ++k) {
@@ -72,7 +78,8 @@ Eigen::MatrixXd kmeans_pp_seed(const Eigen::MatrixXd& data, int k_count, mg::Rng
         }
       }
     } else {
-      pick = std::min<Eigen::Index>(static_cast<Eigen::Index>(uniform01(rng) * static_cast<double>(n)), n - 1);
+      pick = std::min<Eigen::Index>(
+          static_cast<Eigen::Index>(uniform01(rng) * static_cast<double>(n)), n - 1);
     }
     centers.row(k) = data.row(pick);
     d2 = d2.cwiseMin((data.rowwise() - centers.row(k)).rowwise().squaredNorm());
@@ -140,30 +147,37 @@ void Gmm::validate() const {
   const int k_count = num_components();
   if (k_count < 1) throw InputError("GMM: expected at least 1 component, got 0");
   if (static_cast<int>(means.size()) != k_count || static_cast<int>(covariances.size()) != k_count)
-    throw InputError(fmt::format("GMM: expected {} means and covariances (one per prior), got {} and {}", k_count,
-                                 means.size(), covariances.size()));
+    throw InputError(
+        fmt::format("GMM: expected {} means and covariances (one per prior), got {} and {}",
+                    k_count, means.size(), covariances.size()));
   const int d = dim();
   if (d < 1) throw InputError("GMM: expected dimension >= 1, got 0");
   double sum = 0.0;
   for (int k = 0; k < k_count; ++k) {
     const auto ku = static_cast<std::size_t>(k);
     if (!std::isfinite(priors(k)) || priors(k) < 0.0)
-      throw InputError(fmt::format("GMM component {}: prior: expected a finite number >= 0, got {}", k, priors(k)));
+      throw InputError(fmt::format("GMM component {}: prior: expected a finite number >= 0, got {}",
+                                   k, priors(k)));
     sum += priors(k);
     if (means[ku].size() != d)
-      throw InputError(fmt::format("GMM component {}: mean: expected dimension {}, got {}", k, d, means[ku].size()));
-    if (!means[ku].allFinite()) throw InputError(fmt::format("GMM component {}: mean: expected finite values", k));
+      throw InputError(fmt::format("GMM component {}: mean: expected dimension {}, got {}", k, d,
+                                   means[ku].size()));
+    if (!means[ku].allFinite())
+      throw InputError(fmt::format("GMM component {}: mean: expected finite values", k));
     const Eigen::MatrixXd& c = covariances[ku];
     if (c.rows() != d || c.cols() != d)
-      throw InputError(fmt::format("GMM component {}: covariance: expected {} x {}, got {} x {}", k, d, d, c.rows(),
-                                   c.cols()));
-    if (!c.allFinite()) throw InputError(fmt::format("GMM component {}: covariance: expected finite values", k));
+      throw InputError(fmt::format("GMM component {}: covariance: expected {} x {}, got {} x {}", k,
+                                   d, d, c.rows(), c.cols()));
+    if (!c.allFinite())
+      throw InputError(fmt::format("GMM component {}: covariance: expected finite values", k));
     const double asym = (c - c.transpose()).cwiseAbs().maxCoeff();
     if (asym > 1e-9 * std::max(1.0, c.cwiseAbs().maxCoeff()))
-      throw InputError(fmt::format("GMM component {}: covariance: expected a symmetric matrix, asymmetry {}", k, asym));
+      throw InputError(fmt::format(
+          "GMM component {}: covariance: expected a symmetric matrix, asymmetry {}", k, asym));
     Eigen::LLT<Eigen::MatrixXd> llt(c);
     if (llt.info() != Eigen::Success)
-      throw InputError(fmt::format("GMM component {}: covariance: expected positive definite, Cholesky failed", k));
+      throw InputError(fmt::format(
+          "GMM component {}: covariance: expected positive definite, Cholesky failed", k));
   }
   if (std::abs(sum - 1.0) > 1e-9)
     throw InputError(fmt::format("GMM: priors: expected a sum of 1, got {}", sum));
@@ -171,37 +185,47 @@ void Gmm::validate() const {
 
 void EmOptions::validate() const {
   if (max_iterations < 1)
-    throw InputError(fmt::format("EM options: max_iterations: expected >= 1, got {}", max_iterations));
+    throw InputError(
+        fmt::format("EM options: max_iterations: expected >= 1, got {}", max_iterations));
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
-    throw InputError(fmt::format("EM options: tolerance: expected a positive number, got {}", tolerance));
+    throw InputError(
+        fmt::format("EM options: tolerance: expected a positive number, got {}", tolerance));
   if (!(reg_covar >= 0.0) || !std::isfinite(reg_covar))
-    throw InputError(fmt::format("EM options: reg_covar: expected a number >= 0, got {}", reg_covar));
+    throw InputError(
+        fmt::format("EM options: reg_covar: expected a number >= 0, got {}", reg_covar));
   if (kmeans_restarts < 1)
-    throw InputError(fmt::format("EM options: kmeans_restarts: expected >= 1, got {}", kmeans_restarts));
+    throw InputError(
+        fmt::format("EM options: kmeans_restarts: expected >= 1, got {}", kmeans_restarts));
   if (init_restarts < 1)
-    throw InputError(fmt::format("EM options: init_restarts: expected >= 1, got {}", init_restarts));
+    throw InputError(
+        fmt::format("EM options: init_restarts: expected >= 1, got {}", init_restarts));
 }
 
-KMeansResult kmeans(const Eigen::MatrixXd& data, int num_clusters, mg::Rng& rng, int restarts, int max_iterations) {
+KMeansResult kmeans(const Eigen::MatrixXd& data, int num_clusters, mg::Rng& rng, int restarts,
+                    int max_iterations) {
   require_data(data, num_clusters, "k-means");
   KMeansResult best;
   best.inertia = std::numeric_limits<double>::infinity();
   for (int r = 0; r < std::max(1, restarts); ++r) {
-    KMeansResult res = lloyd(data, kmeans_pp_seed(data, num_clusters, rng), std::max(1, max_iterations));
+    KMeansResult res =
+        lloyd(data, kmeans_pp_seed(data, num_clusters, rng), std::max(1, max_iterations));
     if (res.inertia < best.inertia) best = std::move(res);
   }
   // Every restart non-finite (data near the double range: squared distances overflow): no
   // clustering to return, and an empty one would be read out of bounds by the caller.
   if (best.labels.empty())
-    throw mg::NumericalError(fmt::format("k-means: every squared distance overflowed (|values| up to {:g}); "
-                                         "rescale the data", data.cwiseAbs().maxCoeff()));
+    throw mg::NumericalError(
+        fmt::format("k-means: every squared distance overflowed (|values| up to {:g}); "
+                    "rescale the data",
+                    data.cwiseAbs().maxCoeff()));
   return best;
 }
 
 namespace {
 
 // One initialisation (k-means) followed by EM.
-EmResult run_em(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, const EmOptions& options) {
+EmResult run_em(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng,
+                const EmOptions& options) {
   const Eigen::Index n = data.rows();
   const Eigen::Index d = data.cols();
   const KMeansResult km = kmeans(data, num_components, rng, options.kmeans_restarts);
@@ -214,16 +238,19 @@ EmResult run_em(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, c
   for (Eigen::Index i = 0; i < n; ++i) resp(i, km.labels[static_cast<std::size_t>(i)]) = 1.0;
   gmm.means.assign(static_cast<std::size_t>(num_components), Eigen::VectorXd::Zero(d));
   gmm.covariances.assign(static_cast<std::size_t>(num_components), Eigen::MatrixXd::Identity(d, d));
-  for (int k = 0; k < num_components; ++k) gmm.means[static_cast<std::size_t>(k)] = km.centers.row(k).transpose();
+  for (int k = 0; k < num_components; ++k)
+    gmm.means[static_cast<std::size_t>(k)] = km.centers.row(k).transpose();
   m_step(data, resp, options.reg_covar, gmm);
   const Eigen::RowVectorXd overall_mean = data.colwise().mean();
   const Eigen::MatrixXd centred = data.rowwise() - overall_mean;
   Eigen::MatrixXd overall_cov = centred.transpose() * centred / static_cast<double>(n);
   overall_cov /= static_cast<double>(num_components);
-  overall_cov.diagonal().array() += std::max(options.reg_covar, 1e-12 * std::max(1.0, overall_cov.diagonal().maxCoeff()));
+  overall_cov.diagonal().array() +=
+      std::max(options.reg_covar, 1e-12 * std::max(1.0, overall_cov.diagonal().maxCoeff()));
   const Eigen::VectorXd counts = resp.colwise().sum().transpose();
   for (int k = 0; k < num_components; ++k)
-    if (counts(k) < static_cast<double>(d) + 1.0) gmm.covariances[static_cast<std::size_t>(k)] = overall_cov;
+    if (counts(k) < static_cast<double>(d) + 1.0)
+      gmm.covariances[static_cast<std::size_t>(k)] = overall_cov;
   // Priors never start at exactly 0 (log 0), even if k-means left a cluster empty.
   gmm.priors = (counts.array() + 1e-3).matrix();
   gmm.priors /= gmm.priors.sum();
@@ -242,14 +269,16 @@ EmResult run_em(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, c
     result.iterations = it + 1;
   }
   result.log_likelihood = gmm_log_likelihood(gmm, data);
-  if (result.log_likelihood_trace.empty() || result.log_likelihood_trace.back() != result.log_likelihood)
+  if (result.log_likelihood_trace.empty() ||
+      result.log_likelihood_trace.back() != result.log_likelihood)
     result.log_likelihood_trace.push_back(result.log_likelihood);
   return result;
 }
 
 }  // namespace
 
-EmResult fit_gmm(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, const EmOptions& options) {
+EmResult fit_gmm(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng,
+                 const EmOptions& options) {
   options.validate();
   require_data(data, num_components, "GMM fit");
   EmResult best;
@@ -259,13 +288,15 @@ EmResult fit_gmm(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, 
     if (r == 0 || res.log_likelihood > best.log_likelihood) best = std::move(res);
   }
   if (!std::isfinite(best.log_likelihood))
-    throw NumericalError(fmt::format("GMM fit: expected a finite log-likelihood, got {}", best.log_likelihood));
+    throw NumericalError(
+        fmt::format("GMM fit: expected a finite log-likelihood, got {}", best.log_likelihood));
   return best;
 }
 
 double gmm_log_likelihood(const Gmm& gmm, const Eigen::MatrixXd& data) {
   if (data.cols() != gmm.dim())
-    throw InputError(fmt::format("GMM log-likelihood: data: expected {} columns, got {}", gmm.dim(), data.cols()));
+    throw InputError(fmt::format("GMM log-likelihood: data: expected {} columns, got {}", gmm.dim(),
+                                 data.cols()));
   return row_log_sum_exp(weighted_log_densities(gmm, data)).sum();
 }
 
@@ -275,7 +306,8 @@ double gmm_log_density(const Gmm& gmm, const Eigen::VectorXd& x) {
 
 Eigen::MatrixXd gmm_responsibilities(const Gmm& gmm, const Eigen::MatrixXd& data) {
   if (data.cols() != gmm.dim())
-    throw InputError(fmt::format("GMM responsibilities: data: expected {} columns, got {}", gmm.dim(), data.cols()));
+    throw InputError(fmt::format("GMM responsibilities: data: expected {} columns, got {}",
+                                 gmm.dim(), data.cols()));
   const Eigen::MatrixXd logp = weighted_log_densities(gmm, data);
   const Eigen::VectorXd lse = row_log_sum_exp(logp);
   return (logp.colwise() - lse).array().exp().matrix();
@@ -287,12 +319,15 @@ int gmm_num_parameters(int num_components, int dim) {
 
 double gmm_bic(const Gmm& gmm, const Eigen::MatrixXd& data) {
   return -2.0 * gmm_log_likelihood(gmm, data) +
-         gmm_num_parameters(gmm.num_components(), gmm.dim()) * std::log(static_cast<double>(data.rows()));
+         gmm_num_parameters(gmm.num_components(), gmm.dim()) *
+             std::log(static_cast<double>(data.rows()));
 }
 
-EmResult fit_gmm_bic(const Eigen::MatrixXd& data, int max_components, mg::Rng& rng, const EmOptions& options) {
+EmResult fit_gmm_bic(const Eigen::MatrixXd& data, int max_components, mg::Rng& rng,
+                     const EmOptions& options) {
   if (max_components < 1)
-    throw InputError(fmt::format("GMM BIC selection: max components: expected >= 1, got {}", max_components));
+    throw InputError(
+        fmt::format("GMM BIC selection: max components: expected >= 1, got {}", max_components));
   require_data(data, 1, "GMM BIC selection");
   const int k_max = std::min<int>(max_components, static_cast<int>(data.rows()));
   EmResult best;

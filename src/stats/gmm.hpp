@@ -13,9 +13,10 @@ namespace mg::stats {
 
 /// A mixture of `K` Gaussians in `D` dimensions. A plain value type; `validate()` checks it.
 struct Gmm {
-  Eigen::VectorXd priors;                    ///< mixing weights, (K), non-negative, sum 1
-  std::vector<Eigen::VectorXd> means;        ///< K means, each (D)
-  std::vector<Eigen::MatrixXd> covariances;  ///< K covariances, each (D x D), symmetric positive definite
+  Eigen::VectorXd priors;              ///< mixing weights, (K), non-negative, sum 1
+  std::vector<Eigen::VectorXd> means;  ///< K means, each (D)
+  std::vector<Eigen::MatrixXd>
+      covariances;  ///< K covariances, each (D x D), symmetric positive definite
 
   int num_components() const { return static_cast<int>(priors.size()); }
   int dim() const { return means.empty() ? 0 : static_cast<int>(means.front().size()); }
@@ -25,28 +26,32 @@ struct Gmm {
   void validate() const;
 };
 
-/// Options of `fit_gmm`. Defaults in one place; `validate()` throws `mg::InputError` naming the field.
+/// Options of `fit_gmm`. Defaults in one place; `validate()` throws `mg::InputError` naming the
+/// field.
 struct EmOptions {
   int max_iterations = 300;  ///< EM iterations at most (>= 1)
   double tolerance = 1e-8;   ///< stop when |LL change| <= tolerance * max(1, |LL|) (> 0)
   double reg_covar = 1e-6;   ///< added to every covariance diagonal, in data units^2 (>= 0)
-  int kmeans_restarts = 5;   ///< k-means++ seedings tried per initialisation; the lowest inertia wins (>= 1)
-  int init_restarts = 1;     ///< independent initialisations, each followed by EM; the highest final LL wins (>= 1)
+  int kmeans_restarts =
+      5;  ///< k-means++ seedings tried per initialisation; the lowest inertia wins (>= 1)
+  int init_restarts =
+      1;  ///< independent initialisations, each followed by EM; the highest final LL wins (>= 1)
   void validate() const;
 };
 
 struct EmResult {
   Gmm gmm;
-  double log_likelihood = 0.0;               ///< total log-likelihood of the data under `gmm` [nats]
-  int iterations = 0;                        ///< EM iterations performed
-  std::vector<double> log_likelihood_trace;  ///< LL of each successive parameter set, last = `log_likelihood`
+  double log_likelihood = 0.0;  ///< total log-likelihood of the data under `gmm` [nats]
+  int iterations = 0;           ///< EM iterations performed
+  std::vector<double>
+      log_likelihood_trace;  ///< LL of each successive parameter set, last = `log_likelihood`
 };
 
 /// Result of k-means (Lloyd's algorithm after k-means++ seeding).
 struct KMeansResult {
-  Eigen::MatrixXd centers;   ///< (K x D), one centre per row
-  std::vector<int> labels;   ///< (N), index of the nearest centre of each sample
-  double inertia = 0.0;      ///< sum of squared distances to the nearest centre
+  Eigen::MatrixXd centers;  ///< (K x D), one centre per row
+  std::vector<int> labels;  ///< (N), index of the nearest centre of each sample
+  double inertia = 0.0;     ///< sum of squared distances to the nearest centre
 };
 
 /// k-means with k-means++ seeding; the best of `restarts` seedings. Requires 1 <= K <= N.
@@ -55,7 +60,8 @@ KMeansResult kmeans(const Eigen::MatrixXd& data, int num_clusters, mg::Rng& rng,
 
 /// Fits a K-component GMM to the rows of `data` by EM initialised with k-means++ / k-means.
 /// Requires 1 <= K <= N and finite data; throws `mg::InputError` otherwise.
-EmResult fit_gmm(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng, const EmOptions& options = {});
+EmResult fit_gmm(const Eigen::MatrixXd& data, int num_components, mg::Rng& rng,
+                 const EmOptions& options = {});
 
 /// Total log-likelihood sum_n log p(x_n) [nats] (log-sum-exp, finite far from all components).
 double gmm_log_likelihood(const Gmm& gmm, const Eigen::MatrixXd& data);

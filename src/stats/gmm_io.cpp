@@ -19,11 +19,13 @@ nlohmann::json matrix_to_json(const Eigen::MatrixXd& m) {
 }
 
 Eigen::VectorXd json_to_vector(const nlohmann::json& j, std::string_view where) {
-  if (!j.is_array()) throw InputError(fmt::format("{}: expected an array of numbers, got {}", where, j.type_name()));
+  if (!j.is_array())
+    throw InputError(fmt::format("{}: expected an array of numbers, got {}", where, j.type_name()));
   Eigen::VectorXd v(static_cast<Eigen::Index>(j.size()));
   for (std::size_t i = 0; i < j.size(); ++i) {
     if (!j[i].is_number())
-      throw InputError(fmt::format("{}[{}]: expected a number, got {}", where, i, j[i].type_name()));
+      throw InputError(
+          fmt::format("{}[{}]: expected a number, got {}", where, i, j[i].type_name()));
     v(static_cast<Eigen::Index>(i)) = j[i].get<double>();
     if (!std::isfinite(v(static_cast<Eigen::Index>(i))))
       throw InputError(fmt::format("{}[{}]: expected a finite number", where, i));
@@ -32,14 +34,16 @@ Eigen::VectorXd json_to_vector(const nlohmann::json& j, std::string_view where) 
 }
 
 Eigen::MatrixXd json_to_matrix(const nlohmann::json& j, std::string_view where) {
-  if (!j.is_array()) throw InputError(fmt::format("{}: expected an array of rows, got {}", where, j.type_name()));
+  if (!j.is_array())
+    throw InputError(fmt::format("{}: expected an array of rows, got {}", where, j.type_name()));
   const std::size_t rows = j.size();
   Eigen::MatrixXd m;
   for (std::size_t i = 0; i < rows; ++i) {
     const Eigen::VectorXd r = json_to_vector(j[i], fmt::format("{}[{}]", where, i));
     if (i == 0) m.resize(static_cast<Eigen::Index>(rows), r.size());
     if (r.size() != m.cols())
-      throw InputError(fmt::format("{}[{}]: expected {} values (like row 0), got {}", where, i, m.cols(), r.size()));
+      throw InputError(fmt::format("{}[{}]: expected {} values (like row 0), got {}", where, i,
+                                   m.cols(), r.size()));
     m.row(static_cast<Eigen::Index>(i)) = r.transpose();
   }
   return m;
@@ -60,7 +64,8 @@ nlohmann::json gmm_to_json(const Gmm& gmm) {
 }
 
 Gmm gmm_from_json(const nlohmann::json& j, std::string_view where) {
-  if (!j.is_object()) throw InputError(fmt::format("{}: expected a JSON object, got {}", where, j.type_name()));
+  if (!j.is_object())
+    throw InputError(fmt::format("{}: expected a JSON object, got {}", where, j.type_name()));
   for (const char* key : {"priors", "means", "covariances"})
     if (!j.contains(key)) throw InputError(fmt::format("{}: missing field '{}'", where, key));
   if (j.contains("type") && (!j["type"].is_string() || j["type"].get<std::string>() != "gmm"))
@@ -73,16 +78,17 @@ Gmm gmm_from_json(const nlohmann::json& j, std::string_view where) {
     throw InputError(fmt::format("{}: means and covariances: expected arrays", where));
   if (means.size() != static_cast<std::size_t>(gmm.priors.size()) ||
       covs.size() != static_cast<std::size_t>(gmm.priors.size()))
-    throw InputError(fmt::format("{}: expected {} means and covariances (one per prior), got {} and {}", where,
-                                 gmm.priors.size(), means.size(), covs.size()));
+    throw InputError(
+        fmt::format("{}: expected {} means and covariances (one per prior), got {} and {}", where,
+                    gmm.priors.size(), means.size(), covs.size()));
   for (std::size_t k = 0; k < means.size(); ++k) {
     gmm.means.push_back(json_to_vector(means[k], fmt::format("{}.means[{}]", where, k)));
     gmm.covariances.push_back(json_to_matrix(covs[k], fmt::format("{}.covariances[{}]", where, k)));
   }
   if (j.contains("dim")) {
     if (!j["dim"].is_number_integer() || j["dim"].get<int>() != gmm.dim())
-      throw InputError(fmt::format("{}: dim: expected {} (the size of the means), got {}", where, gmm.dim(),
-                                   j["dim"].dump()));
+      throw InputError(fmt::format("{}: dim: expected {} (the size of the means), got {}", where,
+                                   gmm.dim(), j["dim"].dump()));
   }
   try {
     gmm.validate();

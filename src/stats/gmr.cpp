@@ -12,8 +12,10 @@
 namespace mg::stats {
 namespace {
 
-Eigen::MatrixXd sub_matrix(const Eigen::MatrixXd& m, const std::vector<int>& rows, const std::vector<int>& cols) {
-  Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(cols.size()));
+Eigen::MatrixXd sub_matrix(const Eigen::MatrixXd& m, const std::vector<int>& rows,
+                           const std::vector<int>& cols) {
+  Eigen::MatrixXd out(static_cast<Eigen::Index>(rows.size()),
+                      static_cast<Eigen::Index>(cols.size()));
   for (std::size_t i = 0; i < rows.size(); ++i)
     for (std::size_t j = 0; j < cols.size(); ++j)
       out(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = m(rows[i], cols[j]);
@@ -27,14 +29,17 @@ Eigen::VectorXd sub_vector(const Eigen::VectorXd& v, const std::vector<int>& idx
 }
 
 void check_dims(const std::vector<int>& input_dims, const std::vector<int>& output_dims, int dim) {
-  if (output_dims.empty()) throw InputError("GMR: output dimensions: expected at least one, got none");
+  if (output_dims.empty())
+    throw InputError("GMR: output dimensions: expected at least one, got none");
   std::vector<bool> used(static_cast<std::size_t>(dim), false);
   auto check = [&](const std::vector<int>& dims, const char* what) {
     for (int d : dims) {
       if (d < 0 || d >= dim)
-        throw InputError(fmt::format("GMR: {} dimension: expected 0..{}, got {}", what, dim - 1, d));
+        throw InputError(
+            fmt::format("GMR: {} dimension: expected 0..{}, got {}", what, dim - 1, d));
       if (used[static_cast<std::size_t>(d)])
-        throw InputError(fmt::format("GMR: dimension {} is used twice (inputs and outputs must be distinct)", d));
+        throw InputError(fmt::format(
+            "GMR: dimension {} is used twice (inputs and outputs must be distinct)", d));
       used[static_cast<std::size_t>(d)] = true;
     }
   };
@@ -44,7 +49,8 @@ void check_dims(const std::vector<int>& input_dims, const std::vector<int>& outp
 
 }  // namespace
 
-GmrConditioner::GmrConditioner(const Gmm& gmm, std::vector<int> input_dims, std::vector<int> output_dims)
+GmrConditioner::GmrConditioner(const Gmm& gmm, std::vector<int> input_dims,
+                               std::vector<int> output_dims)
     : input_dims_(std::move(input_dims)), output_dims_(std::move(output_dims)) {
   gmm.validate();
   check_dims(input_dims_, output_dims_, gmm.dim());
@@ -70,7 +76,8 @@ GmrConditioner::GmrConditioner(const Gmm& gmm, std::vector<int> input_dims, std:
     Eigen::MatrixXd c = s_oo - a * s_oi.transpose();
     c = 0.5 * (c + c.transpose());
     const double log_det = input_dims_.empty() ? 0.0 : 2.0 * l.diagonal().array().log().sum();
-    log_norm_(k) = std::log(gmm.priors(k)) - 0.5 * (in_dim * std::log(2.0 * std::numbers::pi) + log_det);
+    log_norm_(k) =
+        std::log(gmm.priors(k)) - 0.5 * (in_dim * std::log(2.0 * std::numbers::pi) + log_det);
     offsets_.push_back(mu_o - a * mu_i);
     gains_.push_back(std::move(a));
     cond_covs_.push_back(std::move(c));
@@ -88,7 +95,8 @@ GmrConditioner::Workspace GmrConditioner::make_workspace() const {
   return ws;
 }
 
-void GmrConditioner::compute_weights(const Eigen::Ref<const Eigen::VectorXd>& x, Workspace& ws) const {
+void GmrConditioner::compute_weights(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                     Workspace& ws) const {
   const int k_count = num_components();
   for (int k = 0; k < k_count; ++k) {
     const auto ku = static_cast<std::size_t>(k);
@@ -113,14 +121,14 @@ void GmrConditioner::compute_weights(const Eigen::Ref<const Eigen::VectorXd>& x,
   }
 }
 
-void GmrConditioner::responsibilities(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> h,
-                                      Workspace& ws) const {
+void GmrConditioner::responsibilities(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                      Eigen::Ref<Eigen::VectorXd> h, Workspace& ws) const {
   compute_weights(x, ws);
   h = ws.log_weight;
 }
 
-void GmrConditioner::predict_mean(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> out,
-                                  Workspace& ws) const {
+void GmrConditioner::predict_mean(const Eigen::Ref<const Eigen::VectorXd>& x,
+                                  Eigen::Ref<Eigen::VectorXd> out, Workspace& ws) const {
   compute_weights(x, ws);
   out.setZero();
   for (int k = 0; k < num_components(); ++k) {
@@ -133,7 +141,8 @@ void GmrConditioner::predict_mean(const Eigen::Ref<const Eigen::VectorXd>& x, Ei
   }
 }
 
-void GmrConditioner::predict(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Ref<Eigen::VectorXd> mean,
+void GmrConditioner::predict(const Eigen::Ref<const Eigen::VectorXd>& x,
+                             Eigen::Ref<Eigen::VectorXd> mean,
                              Eigen::Ref<Eigen::MatrixXd> covariance, Workspace& ws) const {
   compute_weights(x, ws);
   mean.setZero();
@@ -155,7 +164,8 @@ void GmrConditioner::predict(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::
 
 GmrPrediction GmrConditioner::predict(const Eigen::VectorXd& x) const {
   if (x.size() != input_dim())
-    throw InputError(fmt::format("GMR: query: expected {} input values, got {}", input_dim(), x.size()));
+    throw InputError(
+        fmt::format("GMR: query: expected {} input values, got {}", input_dim(), x.size()));
   GmrPrediction p;
   p.mean.resize(output_dim());
   p.covariance.resize(output_dim(), output_dim());
@@ -164,8 +174,8 @@ GmrPrediction GmrConditioner::predict(const Eigen::VectorXd& x) const {
   return p;
 }
 
-GmrPrediction gmr_predict(const Gmm& gmm, const std::vector<int>& input_dims, const std::vector<int>& output_dims,
-                          const Eigen::VectorXd& x) {
+GmrPrediction gmr_predict(const Gmm& gmm, const std::vector<int>& input_dims,
+                          const std::vector<int>& output_dims, const Eigen::VectorXd& x) {
   return GmrConditioner(gmm, input_dims, output_dims).predict(x);
 }
 

@@ -62,7 +62,9 @@ class GmrConditioner {
   /// b_k = mu_O - A_k mu_I, (O).
   const Eigen::VectorXd& offset(int k) const { return offsets_[static_cast<std::size_t>(k)]; }
   /// C_k = Sigma_OO - A_k Sigma_IO, (O x O).
-  const Eigen::MatrixXd& conditional_covariance(int k) const { return cond_covs_[static_cast<std::size_t>(k)]; }
+  const Eigen::MatrixXd& conditional_covariance(int k) const {
+    return cond_covs_[static_cast<std::size_t>(k)];
+  }
 
  private:
   // Log-weights log(pi_k N(x; mu_I, Sigma_II)) into ws.log_weight; turns them into h_k in place.
@@ -70,16 +72,16 @@ class GmrConditioner {
 
   std::vector<int> input_dims_;
   std::vector<int> output_dims_;
-  std::vector<Eigen::VectorXd> input_means_;    // mu_I^k, (I)
-  std::vector<Eigen::MatrixXd> input_chol_;     // lower Cholesky of Sigma_II^k, (I x I)
-  Eigen::VectorXd log_norm_;                    // log pi_k - 1/2 (I log 2 pi + log det Sigma_II^k), (K)
+  std::vector<Eigen::VectorXd> input_means_;  // mu_I^k, (I)
+  std::vector<Eigen::MatrixXd> input_chol_;   // lower Cholesky of Sigma_II^k, (I x I)
+  Eigen::VectorXd log_norm_;  // log pi_k - 1/2 (I log 2 pi + log det Sigma_II^k), (K)
   std::vector<Eigen::MatrixXd> gains_;
   std::vector<Eigen::VectorXd> offsets_;
   std::vector<Eigen::MatrixXd> cond_covs_;
 };
 
 /// One-shot conditioning: E[out | in = x] and Cov[out | in = x].
-GmrPrediction gmr_predict(const Gmm& gmm, const std::vector<int>& input_dims, const std::vector<int>& output_dims,
-                          const Eigen::VectorXd& x);
+GmrPrediction gmr_predict(const Gmm& gmm, const std::vector<int>& input_dims,
+                          const std::vector<int>& output_dims, const Eigen::VectorXd& x);
 
 }  // namespace mg::stats

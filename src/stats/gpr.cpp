@@ -5,8 +5,8 @@
 #include <limits>
 #include <numbers>
 
-#include <Eigen/Cholesky>
 #include <fmt/format.h>
+#include <Eigen/Cholesky>
 #include <nlopt.hpp>
 
 #include "core/error.hpp"
@@ -31,16 +31,18 @@ std::vector<Eigen::MatrixXd> pairwise_sq_diffs(const Eigen::MatrixXd& x) {
   return d2;
 }
 
-Eigen::MatrixXd kernel_matrix(const std::vector<Eigen::MatrixXd>& d2, Eigen::Index n, const Eigen::VectorXd& log_params) {
+Eigen::MatrixXd kernel_matrix(const std::vector<Eigen::MatrixXd>& d2, Eigen::Index n,
+                              const Eigen::VectorXd& log_params) {
   const auto d = static_cast<Eigen::Index>(d2.size());
   Eigen::MatrixXd scaled = Eigen::MatrixXd::Zero(n, n);
-  for (Eigen::Index i = 0; i < d; ++i) scaled += d2[static_cast<std::size_t>(i)] * std::exp(-2.0 * log_params(i));
+  for (Eigen::Index i = 0; i < d; ++i)
+    scaled += d2[static_cast<std::size_t>(i)] * std::exp(-2.0 * log_params(i));
   const double sf2 = std::exp(2.0 * log_params(d));
   return sf2 * (-0.5 * scaled.array()).exp().matrix();
 }
 
-double lml_impl(const std::vector<Eigen::MatrixXd>& d2, const Eigen::VectorXd& y, const Eigen::VectorXd& log_params,
-                Eigen::VectorXd* gradient) {
+double lml_impl(const std::vector<Eigen::MatrixXd>& d2, const Eigen::VectorXd& y,
+                const Eigen::VectorXd& log_params, Eigen::VectorXd* gradient) {
   const Eigen::Index n = y.size();
   const auto d = static_cast<Eigen::Index>(d2.size());
   const Eigen::MatrixXd k = kernel_matrix(d2, n, log_params);
@@ -54,14 +56,16 @@ double lml_impl(const std::vector<Eigen::MatrixXd>& d2, const Eigen::VectorXd& y
   }
   const Eigen::VectorXd alpha = llt.solve(y);
   const Eigen::MatrixXd l = llt.matrixL();
-  const double lml = -0.5 * y.dot(alpha) - l.diagonal().array().log().sum() - 0.5 * static_cast<double>(n) * kLog2Pi;
+  const double lml = -0.5 * y.dot(alpha) - l.diagonal().array().log().sum() -
+                     0.5 * static_cast<double>(n) * kLog2Pi;
   if (gradient) {
     // d lml / d theta = 1/2 tr((alpha alpha^T - Ky^-1) dKy/dtheta)   (GPML eq. 5.9)
     Eigen::MatrixXd w = alpha * alpha.transpose() - llt.solve(Eigen::MatrixXd::Identity(n, n));
     const Eigen::MatrixXd wk = w.cwiseProduct(k);
     gradient->resize(d + 2);
     for (Eigen::Index i = 0; i < d; ++i)
-      (*gradient)(i) = 0.5 * wk.cwiseProduct(d2[static_cast<std::size_t>(i)]).sum() * std::exp(-2.0 * log_params(i));
+      (*gradient)(i) = 0.5 * wk.cwiseProduct(d2[static_cast<std::size_t>(i)]).sum() *
+                       std::exp(-2.0 * log_params(i));
     (*gradient)(d) = wk.sum();
     (*gradient)(d + 1) = sn2 * w.trace();
   }
@@ -76,11 +80,13 @@ double column_std(const Eigen::VectorXd& c) {
 
 void require_training_data(const Eigen::MatrixXd& inputs, const Eigen::VectorXd& targets) {
   if (inputs.rows() < 1 || inputs.cols() < 1)
-    throw InputError(fmt::format("GPR: training inputs: expected N >= 1 rows and D >= 1 columns, got {} x {}",
-                                 inputs.rows(), inputs.cols()));
+    throw InputError(
+        fmt::format("GPR: training inputs: expected N >= 1 rows and D >= 1 columns, got {} x {}",
+                    inputs.rows(), inputs.cols()));
   if (targets.size() != inputs.rows())
-    throw InputError(fmt::format("GPR: training targets: expected {} values (one per input row), got {}", inputs.rows(),
-                                 targets.size()));
+    throw InputError(
+        fmt::format("GPR: training targets: expected {} values (one per input row), got {}",
+                    inputs.rows(), targets.size()));
   if (!inputs.allFinite() || !targets.allFinite())
     throw InputError("GPR: training data: expected finite values, got NaN or inf");
   // Squared differences and variances of values beyond 1e100 overflow: predictions would be NaN.
@@ -88,9 +94,11 @@ void require_training_data(const Eigen::MatrixXd& inputs, const Eigen::VectorXd&
   for (Eigen::Index i = 0; i < inputs.rows(); ++i) {
     for (Eigen::Index j = 0; j < inputs.cols(); ++j)
       if (std::abs(inputs(i, j)) > kMaxValue)
-        throw InputError(fmt::format("GPR: training input row {}, column {}: {:g} is beyond +-{:g}", i, j, inputs(i, j), kMaxValue));
+        throw InputError(fmt::format("GPR: training input row {}, column {}: {:g} is beyond +-{:g}",
+                                     i, j, inputs(i, j), kMaxValue));
     if (std::abs(targets(i)) > kMaxValue)
-      throw InputError(fmt::format("GPR: training target {}: {:g} is beyond +-{:g}", i, targets(i), kMaxValue));
+      throw InputError(
+          fmt::format("GPR: training target {}: {:g} is beyond +-{:g}", i, targets(i), kMaxValue));
   }
 }
 
@@ -123,23 +131,29 @@ double uniform01(mg::Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0
 void check_bounds(const char* name, const std::array<double, 2>& b) {
   if (b[0] == 0.0 && b[1] == 0.0) return;
   if (!(b[0] > 0.0) || !(b[1] >= b[0]) || !std::isfinite(b[1]))
-    throw InputError(fmt::format("GPR options: {}: expected 0 < lower <= upper, got [{}, {}]", name, b[0], b[1]));
+    throw InputError(fmt::format("GPR options: {}: expected 0 < lower <= upper, got [{}, {}]", name,
+                                 b[0], b[1]));
 }
 
 }  // namespace
 
 void GprOptions::validate() const {
-  if (restarts < 1) throw InputError(fmt::format("GPR options: restarts: expected >= 1, got {}", restarts));
+  if (restarts < 1)
+    throw InputError(fmt::format("GPR options: restarts: expected >= 1, got {}", restarts));
   if (max_evaluations < 1)
-    throw InputError(fmt::format("GPR options: max_evaluations: expected >= 1, got {}", max_evaluations));
+    throw InputError(
+        fmt::format("GPR options: max_evaluations: expected >= 1, got {}", max_evaluations));
   for (Eigen::Index i = 0; i < initial_length_scales.size(); ++i)
     if (!(initial_length_scales(i) > 0.0) || !std::isfinite(initial_length_scales(i)))
-      throw InputError(fmt::format("GPR options: initial length scale {}: expected a positive number, got {}", i,
-                                   initial_length_scales(i)));
+      throw InputError(
+          fmt::format("GPR options: initial length scale {}: expected a positive number, got {}", i,
+                      initial_length_scales(i)));
   if (!(initial_signal_std >= 0.0) || !std::isfinite(initial_signal_std))
-    throw InputError(fmt::format("GPR options: initial signal std: expected a positive number, got {}", initial_signal_std));
+    throw InputError(fmt::format(
+        "GPR options: initial signal std: expected a positive number, got {}", initial_signal_std));
   if (!(initial_noise_std >= 0.0) || !std::isfinite(initial_noise_std))
-    throw InputError(fmt::format("GPR options: initial noise std: expected a positive number, got {}", initial_noise_std));
+    throw InputError(fmt::format(
+        "GPR options: initial noise std: expected a positive number, got {}", initial_noise_std));
   check_bounds("length scale bounds", length_scale_bounds);
   check_bounds("signal std bounds", signal_std_bounds);
   check_bounds("noise std bounds", noise_std_bounds);
@@ -149,25 +163,30 @@ double gp_log_marginal_likelihood(const Eigen::MatrixXd& inputs, const Eigen::Ve
                                   const Eigen::VectorXd& log_params, Eigen::VectorXd* gradient) {
   require_training_data(inputs, y);
   if (log_params.size() != inputs.cols() + 2)
-    throw InputError(fmt::format("GPR: log parameters: expected {} values (D length scales, sf, sn), got {}",
-                                 inputs.cols() + 2, log_params.size()));
+    throw InputError(
+        fmt::format("GPR: log parameters: expected {} values (D length scales, sf, sn), got {}",
+                    inputs.cols() + 2, log_params.size()));
   return lml_impl(pairwise_sq_diffs(inputs), y, log_params, gradient);
 }
 
-GpModel make_gp_model(const Eigen::MatrixXd& inputs, const Eigen::VectorXd& targets, const GpHyperparameters& hyper) {
+GpModel make_gp_model(const Eigen::MatrixXd& inputs, const Eigen::VectorXd& targets,
+                      const GpHyperparameters& hyper) {
   require_training_data(inputs, targets);
   const Eigen::Index n = inputs.rows();
   const Eigen::Index d = inputs.cols();
   if (hyper.length_scales.size() != d)
-    throw InputError(fmt::format("GPR: length scales: expected {} values (one per input), got {}", d,
-                                 hyper.length_scales.size()));
+    throw InputError(fmt::format("GPR: length scales: expected {} values (one per input), got {}",
+                                 d, hyper.length_scales.size()));
   for (Eigen::Index i = 0; i < d; ++i)
     if (!(hyper.length_scales(i) > 0.0) || !std::isfinite(hyper.length_scales(i)))
-      throw InputError(fmt::format("GPR: length scale {}: expected a positive number, got {}", i, hyper.length_scales(i)));
+      throw InputError(fmt::format("GPR: length scale {}: expected a positive number, got {}", i,
+                                   hyper.length_scales(i)));
   if (!(hyper.signal_std > 0.0) || !(hyper.signal_std <= 1e100))
-    throw InputError(fmt::format("GPR: signal std: expected a positive number <= 1e100, got {}", hyper.signal_std));
+    throw InputError(fmt::format("GPR: signal std: expected a positive number <= 1e100, got {}",
+                                 hyper.signal_std));
   if (!(hyper.noise_std >= 0.0) || !(hyper.noise_std <= 1e100))
-    throw InputError(fmt::format("GPR: noise std: expected a number in [0, 1e100], got {}", hyper.noise_std));
+    throw InputError(
+        fmt::format("GPR: noise std: expected a number in [0, 1e100], got {}", hyper.noise_std));
 
   GpModel m;
   m.inputs = inputs;
@@ -189,7 +208,8 @@ GpModel make_gp_model(const Eigen::MatrixXd& inputs, const Eigen::VectorXd& targ
   m.alpha = m.chol.triangularView<Eigen::Lower>().solve(y);
   m.chol.transpose().triangularView<Eigen::Upper>().solveInPlace(m.alpha);
   m.log_marginal_likelihood = -0.5 * y.dot(m.alpha) - m.chol.diagonal().array().log().sum() -
-                              0.5 * static_cast<double>(n) * kLog2Pi - static_cast<double>(n) * std::log(m.output_scale);
+                              0.5 * static_cast<double>(n) * kLog2Pi -
+                              static_cast<double>(n) * std::log(m.output_scale);
   return m;
 }
 
@@ -200,8 +220,9 @@ GpModel fit_gpr(const Eigen::MatrixXd& inputs, const Eigen::VectorXd& targets, m
   const Eigen::Index d = inputs.cols();
   if (options.initial_length_scales.size() != 0 && options.initial_length_scales.size() != 1 &&
       options.initial_length_scales.size() != d)
-    throw InputError(fmt::format("GPR options: initial length scales: expected 1 or {} values, got {}", d,
-                                 options.initial_length_scales.size()));
+    throw InputError(
+        fmt::format("GPR options: initial length scales: expected 1 or {} values, got {}", d,
+                    options.initial_length_scales.size()));
   const double y_std = column_std(targets);
   const double y_scale = y_std > 0.0 ? y_std : 1.0;
 
@@ -215,11 +236,13 @@ GpModel fit_gpr(const Eigen::MatrixXd& inputs, const Eigen::VectorXd& targets, m
     lo(i) = std::log(user_bounds ? options.length_scale_bounds[0] : 1e-2 * s);
     hi(i) = std::log(user_bounds ? options.length_scale_bounds[1] : 1e2 * s);
     const double init = options.initial_length_scales.size() == 0 ? s
-                        : options.initial_length_scales.size() == 1 ? options.initial_length_scales(0)
-                                                                    : options.initial_length_scales(i);
+                        : options.initial_length_scales.size() == 1
+                            ? options.initial_length_scales(0)
+                            : options.initial_length_scales(i);
     x0(i) = std::log(init);
   }
-  auto set = [&](Eigen::Index i, const std::array<double, 2>& b, double dlo, double dhi, double init, double dinit) {
+  auto set = [&](Eigen::Index i, const std::array<double, 2>& b, double dlo, double dhi,
+                 double init, double dinit) {
     const bool user_bounds = b[1] > 0.0;
     lo(i) = std::log(user_bounds ? b[0] / y_scale : dlo);
     hi(i) = std::log(user_bounds ? b[1] / y_scale : dhi);
@@ -273,7 +296,8 @@ GpWorkspace make_gp_workspace(const GpModel& model) {
   return ws;
 }
 
-GpPrediction gp_predict(const GpModel& model, const Eigen::Ref<const Eigen::VectorXd>& x, GpWorkspace& ws) {
+GpPrediction gp_predict(const GpModel& model, const Eigen::Ref<const Eigen::VectorXd>& x,
+                        GpWorkspace& ws) {
   const double sf_s = model.hyper.signal_std / model.output_scale;
   const double sf2 = sf_s * sf_s;
   for (int a = 0; a < model.size(); ++a) {
@@ -293,7 +317,8 @@ GpPrediction gp_predict(const GpModel& model, const Eigen::Ref<const Eigen::Vect
 
 GpPrediction gp_predict(const GpModel& model, const Eigen::VectorXd& x) {
   if (x.size() != model.dim())
-    throw InputError(fmt::format("GPR: query: expected {} input values, got {}", model.dim(), x.size()));
+    throw InputError(
+        fmt::format("GPR: query: expected {} input values, got {}", model.dim(), x.size()));
   GpWorkspace ws = make_gp_workspace(model);
   return gp_predict(model, x, ws);
 }

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <fmt/format.h>
 
 #include "core/error.hpp"
 
@@ -39,8 +39,9 @@ inline Eigen::MatrixXd robust_cholesky(const Eigen::MatrixXd& a, double* jitter_
       return llt.matrixL();
     }
   }
-  throw NumericalError(fmt::format("Cholesky: expected a positive definite {} x {} matrix, even with jitter",
-                                   a.rows(), a.cols()));
+  throw NumericalError(
+      fmt::format("Cholesky: expected a positive definite {} x {} matrix, even with jitter",
+                  a.rows(), a.cols()));
 }
 
 }  // namespace mg::stats

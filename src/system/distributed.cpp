@@ -92,7 +92,8 @@ ProcessGroup::ProcessGroup([[maybe_unused]] int& argc, [[maybe_unused]] char**& 
   }
   active_ = true;
   MPI_Comm node;
-  if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node) == MPI_SUCCESS) {
+  if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node) ==
+      MPI_SUCCESS) {
     MPI_Comm_size(node, &local_processes);
     MPI_Comm_free(&node);
   }
@@ -139,8 +140,8 @@ std::vector<std::string> all_gather(const std::string& local) {
     if (total > INT_MAX) throw Error("all_gather: the results exceed MPI's 2 GiB message limit");
   }
   std::string buffer(static_cast<std::size_t>(total), '\0');
-  MPI_Allgatherv(local.data(), mine, MPI_CHAR, buffer.data(), counts.data(), offsets.data(), MPI_CHAR,
-                 MPI_COMM_WORLD);
+  MPI_Allgatherv(local.data(), mine, MPI_CHAR, buffer.data(), counts.data(), offsets.data(),
+                 MPI_CHAR, MPI_COMM_WORLD);
   std::vector<std::string> out;
   for (int r = 0; r < size; ++r)
     out.push_back(buffer.substr(static_cast<std::size_t>(offsets[static_cast<std::size_t>(r)]),

@@ -68,8 +68,8 @@ void distributed_for(const System& system, std::vector<T>& results, int threads,
     std::function<void(int)> local_done;
     if (done) local_done = [&](int k) { done(rank + k * size); };
     parallel_for(
-        system, local_count(rank), threads, [&](int k, SystemData& data) { job(rank + k * size, data); },
-        local_done);
+        system, local_count(rank), threads,
+        [&](int k, SystemData& data) { job(rank + k * size, data); }, local_done);
   } catch (const InputError& e) {
     kind = 1, message = e.what();
   } catch (const IoError& e) {
@@ -82,21 +82,28 @@ void distributed_for(const System& system, std::vector<T>& results, int threads,
   WireWriter w;
   w(kind, message);
   if (kind == 0)
-    for (int k = 0; k < local_count(rank); ++k) w(results[static_cast<std::size_t>(rank + k * size)]);
+    for (int k = 0; k < local_count(rank); ++k)
+      w(results[static_cast<std::size_t>(rank + k * size)]);
   const std::vector<std::string> all = all_gather(w.bytes());
   for (int r = 0; r < size; ++r) {
     WireReader in(all[static_cast<std::size_t>(r)]);
     in(kind, message);
     switch (kind) {
-      case 0: break;
-      case 1: throw InputError(message);
-      case 2: throw IoError(message);
-      case 3: throw NumericalError(message);
-      default: throw Error(message);
+      case 0:
+        break;
+      case 1:
+        throw InputError(message);
+      case 2:
+        throw IoError(message);
+      case 3:
+        throw NumericalError(message);
+      default:
+        throw Error(message);
     }
     if (r == rank) continue;
     for (int k = 0; k < local_count(r); ++k) in(results[static_cast<std::size_t>(r + k * size)]);
-    if (!in.at_end()) throw Error("distributed_for: a message from another process has extra bytes");
+    if (!in.at_end())
+      throw Error("distributed_for: a message from another process has extra bytes");
   }
   if (done)
     for (int i = 0; i < n; ++i)

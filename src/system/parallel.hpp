@@ -20,7 +20,9 @@ namespace mg::system {
 int default_thread_count();
 
 /// Threads to use: `requested` if > 0, else default_thread_count().
-inline int thread_count(int requested) { return requested > 0 ? requested : default_thread_count(); }
+inline int thread_count(int requested) {
+  return requested > 0 ? requested : default_thread_count();
+}
 
 /// True while this thread runs a job of parallel_for: a distributed_for inside a job runs locally
 /// (the outer loop is the one split over processes, or duplicated on each).

@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <istream>
 #include <ostream>
 
@@ -113,7 +113,8 @@ Session::Session(const ModuleConfig& config, const SessionOptions& options, std:
     feed_config.limits = perception::vision_limits_for(world_.field());
     feed_config.max_age = config_.perception_max_age;
     feed_ = std::make_unique<perception::VisionFeed>(
-        perception::UdpReceiver(config_.vision_address, static_cast<std::uint16_t>(config_.vision_port)),
+        perception::UdpReceiver(config_.vision_address,
+                                static_cast<std::uint16_t>(config_.vision_port)),
         feed_config);
     network_ = std::make_unique<perception::NetworkPerception>(*feed_);
     perception_ = network_.get();
@@ -127,7 +128,8 @@ Session::Session(const ModuleConfig& config, const SessionOptions& options, std:
       publisher_ = std::make_unique<perception::VisionPublisher>("127.0.0.1", feed_->port(), pc);
     }
   } else if (options_.vision_sim) {
-    throw InputError("console: --vision-sim needs normal mode (--mode normal, or mode: normal in the config)");
+    throw InputError(
+        "console: --vision-sim needs normal mode (--mode normal, or mode: normal in the config)");
   }
   if (!config_.params_model.empty()) load_params(config_.params_model);
   if (!config_.record.empty()) recorder_.start(config_.record);
@@ -136,8 +138,8 @@ Session::Session(const ModuleConfig& config, const SessionOptions& options, std:
   say(fmt::format(
       "minigolf console: field {}, mode {}, {}, hole ({:.3f}, {:.3f}), angle {:.3f} rad, speed "
       "{:.3f} m/s{}; type help",
-      world_.field().name, to_string(config_.mode),
-      options_.realtime ? "realtime" : "lockstep", hole[0], hole[1], angle_, speed_,
+      world_.field().name, to_string(config_.mode), options_.realtime ? "realtime" : "lockstep",
+      hole[0], hole[1], angle_, speed_,
       feed_ ? fmt::format(", vision on udp port {}{}", feed_->port(),
                           publisher_ ? " (built-in vision simulator)" : "")
             : ""));
@@ -241,8 +243,15 @@ void Session::tick_locked(bool lockstep) {
 }
 
 SessionView Session::view_locked() const {
-  return SessionView{world_,  d_.get(),          *model_,          *md_, angle_, speed_, hit_when_at_rest_,
-                     tracker_.has_value(), last_outcome_ ? &*last_outcome_ : nullptr};
+  return SessionView{world_,
+                     d_.get(),
+                     *model_,
+                     *md_,
+                     angle_,
+                     speed_,
+                     hit_when_at_rest_,
+                     tracker_.has_value(),
+                     last_outcome_ ? &*last_outcome_ : nullptr};
 }
 
 void Session::robot_tick_locked() {
@@ -317,7 +326,8 @@ void Session::print_events() {
           say(fmt::format("{} {}", format_time(e.t), to_string(e.reason)));
           break;
         case Event::Kind::kOutcome:
-          say(fmt::format("{} ball: {} at ({:.3f}, {:.3f}), {:.3f} m from the hole, {:.2f} s after "
+          say(
+              fmt::format("{} ball: {} at ({:.3f}, {:.3f}), {:.3f} m from the hole, {:.2f} s after "
                           "the hit",
                           format_time(e.t), e.sunk ? "holed" : sim::to_string(e.end), e.x, e.y,
                           e.distance, e.duration));
@@ -336,23 +346,27 @@ void Session::run_for(double seconds) {
     // In slices: an interrupt or a termination signal (Ctrl-C) ends the wait.
     const auto until = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                           std::chrono::duration<double>(seconds));
-    while (Clock::now() < until && !interrupted_.load() && termination_signal() == 0)  // the robot thread prints meanwhile
-      std::this_thread::sleep_for(std::min<Clock::duration>(until - Clock::now(),
-                                                            std::chrono::milliseconds(20)));
+    while (Clock::now() < until && !interrupted_.load() &&
+           termination_signal() == 0)  // the robot thread prints meanwhile
+      std::this_thread::sleep_for(
+          std::min<Clock::duration>(until - Clock::now(), std::chrono::milliseconds(20)));
     print_events();
     return;
   }
   const long ticks = std::lround(seconds / config_.core_period());
   const auto start = Clock::now();
   const auto period = std::chrono::duration<double>(config_.core_period());
-  for (long k = 0; k < ticks && !interrupted_.load(std::memory_order_relaxed) && termination_signal() == 0; ++k) {
+  for (long k = 0;
+       k < ticks && !interrupted_.load(std::memory_order_relaxed) && termination_signal() == 0;
+       ++k) {
     {
       std::lock_guard lock(mutex_);
       tick_locked(true);
     }
     print_events();
     if (options_.paced)
-      std::this_thread::sleep_until(start + std::chrono::duration_cast<Clock::duration>(period * (k + 1)));
+      std::this_thread::sleep_until(start +
+                                    std::chrono::duration_cast<Clock::duration>(period * (k + 1)));
   }
 }
 
@@ -427,7 +441,8 @@ void Session::run(std::istream& in, bool prompt) {
   std::string line;
   while (!interrupted_.load()) {
     if (const int sig = termination_signal()) {
-      // Ctrl-C, kill, a closed terminal: keep the recording (written first: the output may be gone).
+      // Ctrl-C, kill, a closed terminal: keep the recording (written first: the output may be
+      // gone).
       stop_threads();
       finish_recording();
       say(fmt::format("interrupted by {}: quit", sig == SIGINT    ? "SIGINT"
@@ -567,7 +582,8 @@ void Session::do_command(const ConsoleCommand& command) {
           }
           if (!std::isfinite(angle) || !std::isfinite(speed) || angle < c.angle_min ||
               angle > c.angle_max || speed < c.speed_min || speed > model_->speed_cap()) {
-            say(fmt::format("auto refused: the model predicts angle {} rad, speed {} m/s for xi "
+            say(
+                fmt::format("auto refused: the model predicts angle {} rad, speed {} m/s for xi "
                             "({:.3f}, {:.3f}), outside the safe envelope",
                             angle, speed, xi(0, 0), xi(0, 1)));
             return;
@@ -602,7 +618,8 @@ void Session::do_command(const ConsoleCommand& command) {
             return;
           }
           ds::HittingModel hitting = ds::read_hitting_model(resolve_path(cmd.path));
-          auto model = std::make_unique<ModuleModel>(make_module_model(world_, std::move(hitting), config_));
+          auto model =
+              std::make_unique<ModuleModel>(make_module_model(world_, std::move(hitting), config_));
           auto data = std::make_unique<ModuleData>(*model);
           std::lock_guard lock(mutex_);
           if (md_->state != ModuleState::kIdle) {
@@ -623,8 +640,9 @@ void Session::do_command(const ConsoleCommand& command) {
           } else {
             const std::size_t dropped = recorder_.dropped();
             const std::size_t n = recorder_.stop();
-            say(fmt::format("recording written: {} rows to {}{}", n, recorder_.path().string(),
-                            dropped ? fmt::format(" ({} rows dropped: buffer full)", dropped) : ""));
+            say(fmt::format(
+                "recording written: {} rows to {}{}", n, recorder_.path().string(),
+                dropped ? fmt::format(" ({} rows dropped: buffer full)", dropped) : ""));
           }
         } else if constexpr (std::is_same_v<T, WaitCmd>) {
           run_for(cmd.seconds);
@@ -640,8 +658,8 @@ void Session::do_command(const ConsoleCommand& command) {
             text += fmt::format("time {:.3f} s, state {}, angle {:.4f} rad, speed {:.4f} m/s{}\n",
                                 d->time, to_string(md.state), angle_, speed_,
                                 hit_when_at_rest_ ? " (hit armed)" : "");
-            text += fmt::format("ball ({:.3f}, {:.3f}, {:.3f}), hole ({:.3f}, {:.3f})\n", b[0], b[1],
-                                b[2], hole[0], hole[1]);
+            text += fmt::format("ball ({:.3f}, {:.3f}, {:.3f}), hole ({:.3f}, {:.3f})\n", b[0],
+                                b[1], b[2], hole[0], hole[1]);
             text += fmt::format("perception: {}, ball ({:.3f}, {:.3f}), hole ({:.3f}, {:.3f})\n",
                                 perception_fresh(*model_, md) ? "fresh" : "STALE", md.seen.ball[0],
                                 md.seen.ball[1], md.seen.hole[0], md.seen.hole[1]);
@@ -654,10 +672,11 @@ void Session::do_command(const ConsoleCommand& command) {
                   k.too_long);
             }
             text += fmt::format("params: {}\n", params_ ? params_path_ : std::string("none"));
-            text += fmt::format("recording: {}\n",
-                                recorder_.active()
-                                    ? fmt::format("{} ({} rows)", recorder_.path().string(), recorder_.rows())
-                                    : std::string("off"));
+            text += fmt::format(
+                "recording: {}\n",
+                recorder_.active()
+                    ? fmt::format("{} ({} rows)", recorder_.path().string(), recorder_.rows())
+                    : std::string("off"));
             text += fmt::format(
                 "core update: {} ticks, p99 {:.0f} us, max {:.0f} us, over budget {}, deadline "
                 "misses {}; scheduling {}",
@@ -689,8 +708,8 @@ CoreTiming Session::timing() const {
 
 std::string Session::scheduling_locked() const {
   if (!options_.realtime) return "lockstep (one thread)";
-  return fmt::format("realtime: core thread {}, robot thread {}, user thread default", core_priority_,
-                     robot_priority_);
+  return fmt::format("realtime: core thread {}, robot thread {}, user thread default",
+                     core_priority_, robot_priority_);
 }
 
 std::string Session::scheduling() const {

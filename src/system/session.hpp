@@ -50,10 +50,10 @@ struct SessionView {
   const mjData* d;
   const control::ModuleModel& model;
   const control::ModuleData& module;
-  double angle;       ///< [rad] the console's hitting angle
-  double speed;       ///< [m/s] the console's club speed
-  bool hit_armed;     ///< `hit` waits for the rest pose
-  bool ball_rolling;  ///< hit, outcome not decided yet
+  double angle;                          ///< [rad] the console's hitting angle
+  double speed;                          ///< [m/s] the console's club speed
+  bool hit_armed;                        ///< `hit` waits for the rest pose
+  bool ball_rolling;                     ///< hit, outcome not decided yet
   const sim::PuttOutcome* last_outcome;  ///< the latest decided hit (nullptr: none yet)
 };
 
@@ -68,7 +68,7 @@ class SessionObserver {
 };
 
 struct SessionOptions {
-  bool realtime = false;    ///< three threads paced by the wall clock; else lockstep
+  bool realtime = false;  ///< three threads paced by the wall clock; else lockstep
   /// Lockstep only: `wait S` takes S seconds of wall clock (sleeps between ticks, outside the
   /// mutex), for watching; the simulation is the same bits as unpaced.
   bool paced = false;
@@ -162,7 +162,8 @@ class Session {
   std::unique_ptr<System> system_;  ///< field worlds, arm, hitting model: built once
   const sim::World& world_;
   sim::DataPtr d_;
-  std::unique_ptr<control::ModuleModel> model_;  ///< a copy of the system's (`load hitting` replaces it)
+  std::unique_ptr<control::ModuleModel>
+      model_;  ///< a copy of the system's (`load hitting` replaces it)
   std::unique_ptr<control::ModuleData> md_;
   perception::SimulatorPerception truth_;
   std::unique_ptr<perception::VisionFeed> feed_;
@@ -175,8 +176,8 @@ class Session {
   double angle_ = 0.0;  ///< [rad] the console's current hitting angle
   double speed_ = 1.0;  ///< [m/s] the console's current club speed
   bool hit_when_at_rest_ = false;
-  std::optional<sim::OutcomeTracker> tracker_;  ///< the ball after a hit, until decided
-  double hit_time_ = 0.0;                        ///< [s] simulated time of that hit
+  std::optional<sim::OutcomeTracker> tracker_;    ///< the ball after a hit, until decided
+  double hit_time_ = 0.0;                         ///< [s] simulated time of that hit
   std::optional<sim::PuttOutcome> last_outcome_;  ///< the latest decided hit
   int steps_per_tick_ = 2;
   TimingHistogram timing_;

@@ -27,7 +27,8 @@ control::ModuleConfig load_config(const std::string& config_path, const std::str
   if (!config_path.empty()) {
     std::error_code ec;
     if (std::filesystem::is_directory(config_path, ec))
-      throw InputError(fmt::format("--config: '{}' is a directory, expected a YAML file", config_path));
+      throw InputError(
+          fmt::format("--config: '{}' is a directory, expected a YAML file", config_path));
     config = control::load_module_config(config_path);
   }
   if (!field.empty()) config.field = field;
@@ -51,7 +52,8 @@ System::System(const control::ModuleConfig& config, field::Field field, plant::P
   robot::WamMount true_mount = belief_mount;
   true_mount.joint_friction = plant_.arm.joint_friction;
   if (plant_.arm.club_restitution_scale != 1.0)
-    true_mount.club.face_restitution = std::min(0.99, belief_mount.club.face_restitution * plant_.arm.club_restitution_scale);
+    true_mount.club.face_restitution =
+        std::min(0.99, belief_mount.club.face_restitution * plant_.arm.club_restitution_scale);
   arm_world_ = std::make_unique<sim::World>(
       control::make_world_with_arm(plant::true_field(belief_, plant_), true_mount));
   ball_world_ = std::make_unique<sim::World>(control::make_ball_world(*arm_world_));
@@ -72,12 +74,14 @@ void System::check_request(double angle, double speed, const std::string& what) 
 void System::check_speed(double speed, const std::string& what) const {
   const auto& c = config_;
   if (!std::isfinite(speed) || speed < c.speed_min || speed > c.speed_max)
-    throw InputError(fmt::format("{}: speed: expected {}..{} m/s (club speed, safe envelope), got {}",
-                                 what, c.speed_min, c.speed_max, speed));
+    throw InputError(
+        fmt::format("{}: speed: expected {}..{} m/s (club speed, safe envelope), got {}", what,
+                    c.speed_min, c.speed_max, speed));
 }
 
 SystemData::SystemData(const System& system)
-    : arm(system.arm_world().make_data()), ball(system.ball_world().make_data()),
+    : arm(system.arm_world().make_data()),
+      ball(system.ball_world().make_data()),
       scratch(std::make_unique<control::PuttScratch>()) {}
 
 namespace {
@@ -118,7 +122,8 @@ control::FullPuttResult arm_putt(const System& system, SystemData& data, std::ar
     const auto seen = hole;
     hole = real_hole(system, seen);
     field::check_hole_position(system.arm_world().field(), hole);
-    if (p.arm.torque_noise > 0.0) options.torque_noise = std::hypot(options.torque_noise, p.arm.torque_noise);
+    if (p.arm.torque_noise > 0.0)
+      options.torque_noise = std::hypot(options.torque_noise, p.arm.torque_noise);
     options.launch_angle_bias += p.arm.launch_angle_bias;
     options.club_speed_scale *= p.arm.club_speed_scale;
     options.perception_latency += p.perception.latency;

@@ -50,8 +50,10 @@ class System {
   const field::Field& field() const { return belief_; }
   /// The world as it is: the oracle and the world builder may read it, the robot may not.
   const plant::Plant& plant() const { return plant_; }
-  const sim::World& arm_world() const { return *arm_world_; }    ///< true field + WAM + club
-  const sim::World& ball_world() const { return *ball_world_; }  ///< true field only (the arm world's options)
+  const sim::World& arm_world() const { return *arm_world_; }  ///< true field + WAM + club
+  const sim::World& ball_world() const {
+    return *ball_world_;
+  }  ///< true field only (the arm world's options)
   const control::ModuleModel& module() const { return *module_; }
 
   /// Throws InputError naming `what` unless (angle, speed) is inside the module's safe envelope.
@@ -71,8 +73,8 @@ class System {
 /// Per-thread mutable state for putts on one System.
 struct SystemData {
   explicit SystemData(const System& system);
-  sim::DataPtr arm;   ///< for full-system putts
-  sim::DataPtr ball;  ///< for ball-only putts
+  sim::DataPtr arm;                               ///< for full-system putts
+  sim::DataPtr ball;                              ///< for ball-only putts
   std::unique_ptr<control::PuttScratch> scratch;  ///< hand-off data, approach cache (bit-neutral)
 };
 
@@ -83,7 +85,8 @@ std::array<double, 2> real_hole(const System& system, std::array<double, 2> hole
 
 /// The arm hits the ball (lockstep simulator mode) with the hole seen at `hole` (real_hole is
 /// where it is): hitting angle `angle` [rad], club speed `speed` [m/s]; the plant's arm and vision
-/// act (the module sees the ball off by this situation's vision error). Deterministic. Throws InputError for a bad hole.
+/// act (the module sees the ball off by this situation's vision error). Deterministic. Throws
+/// InputError for a bad hole.
 control::FullPuttResult arm_putt(const System& system, SystemData& data, std::array<double, 2> hole,
                                  double angle, double speed, control::FullPuttOptions options = {});
 

@@ -73,7 +73,8 @@ class WireReader {
   template <typename T>
   void get(T& v) {
     if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
-      if (bytes_.size() - pos_ < sizeof v) throw Error("wire: a message from another process is truncated");
+      if (bytes_.size() - pos_ < sizeof v)
+        throw Error("wire: a message from another process is truncated");
       std::memcpy(&v, bytes_.data() + pos_, sizeof v);
       pos_ += sizeof v;
     } else if constexpr (wire_detail::IsArray<T>::value) {
@@ -81,7 +82,8 @@ class WireReader {
     } else if constexpr (wire_detail::IsVector<T>::value || std::is_same_v<T, std::string>) {
       std::uint64_t n = 0;
       get(n);
-      if (n > bytes_.size() - pos_) throw Error("wire: a message from another process is truncated");
+      if (n > bytes_.size() - pos_)
+        throw Error("wire: a message from another process is truncated");
       v.resize(static_cast<std::size_t>(n));
       for (auto& e : v) get(e);
     } else {
@@ -96,7 +98,8 @@ class WireReader {
 // adding it here (x86-64 layouts).
 template <>
 struct Wire<sim::BallSample> {
-  static_assert(sizeof(sim::BallSample) == 56, "sim::BallSample changed: update Wire<sim::BallSample>");
+  static_assert(sizeof(sim::BallSample) == 56,
+                "sim::BallSample changed: update Wire<sim::BallSample>");
   template <typename A>
   static void fields(A& a, sim::BallSample& s) {
     a(s.t, s.x, s.y, s.z, s.vx, s.vy, s.vz);
@@ -105,7 +108,8 @@ struct Wire<sim::BallSample> {
 
 template <>
 struct Wire<sim::PuttOutcome> {
-  static_assert(sizeof(sim::PuttOutcome) == 96, "sim::PuttOutcome changed: update Wire<sim::PuttOutcome>");
+  static_assert(sizeof(sim::PuttOutcome) == 96,
+                "sim::PuttOutcome changed: update Wire<sim::PuttOutcome>");
   template <typename A>
   static void fields(A& a, sim::PuttOutcome& o) {
     a(o.sunk, o.end, o.rest_position, o.closest_approach, o.approach_speed, o.approach_lateral,

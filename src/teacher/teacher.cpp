@@ -4,8 +4,8 @@
 #include <cmath>
 #include <optional>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include "core/error.hpp"
 
@@ -55,8 +55,8 @@ class Search {
     Probe p;
     p.valid = o.end != sim::PuttEnd::kTimeOut || o.sunk;
     p.sunk = o.sunk;
-    const double e = o.approach_speed * o.approach_speed -
-                     2.0 * a_roll_ * std::max(0.0, o.approach_along);
+    const double e =
+        o.approach_speed * o.approach_speed - 2.0 * a_roll_ * std::max(0.0, o.approach_along);
     p.r = {o.approach_lateral, e - vt_ * vt_};
     p.approach_speed = o.approach_speed;
     return p;
@@ -70,7 +70,8 @@ class Search {
   std::pair<double, double> clamp_club(double angle, double speed) const {
     const auto& c = sys_.config();
     angle = std::clamp(angle, c.angle_min, c.angle_max);
-    speed = std::clamp(speed, c.speed_min, std::min(c.speed_max, sys_.module().club_speed_cap(angle)));
+    speed =
+        std::clamp(speed, c.speed_min, std::min(c.speed_max, sys_.module().club_speed_cap(angle)));
     return {angle, speed};
   }
 
@@ -99,7 +100,8 @@ class Search {
     Probe p = probe(x);
     for (int it = 0; it < max_iter; ++it) {
       if (!p.valid) return best;
-      const double score = std::abs(p.r[0]) / radius_ + (one_d ? 0.0 : std::abs(p.r[1]) / (vt_ * vt_));
+      const double score =
+          std::abs(p.r[0]) / radius_ + (one_d ? 0.0 : std::abs(p.r[1]) / (vt_ * vt_));
       if (p.sunk && score < best_score) {
         best = x;
         best_score = score;
@@ -132,7 +134,8 @@ class Search {
       p = pn;
     }
     if (p.valid && p.sunk) {
-      const double score = std::abs(p.r[0]) / radius_ + (one_d ? 0.0 : std::abs(p.r[1]) / (vt_ * vt_));
+      const double score =
+          std::abs(p.r[0]) / radius_ + (one_d ? 0.0 : std::abs(p.r[1]) / (vt_ * vt_));
       if (score < best_score) {
         best = x;
         if (last) *last = p;
@@ -173,7 +176,8 @@ class Search {
                                (k + 1 < nu && sunk[static_cast<std::size_t>(i * nu + k + 1)]);
         if (!neighbour) continue;
         const double da = std::abs(angle(i) - aim_);
-        const double key = opt_.strategy == Strategy::kMinSpeed ? speed(k) * 100.0 + da : da * 100.0 + speed(k);
+        const double key =
+            opt_.strategy == Strategy::kMinSpeed ? speed(k) * 100.0 + da : da * 100.0 + speed(k);
         if (key < best_key) {
           best_key = key;
           best = Eigen::Vector2d(angle(i), speed(k));
@@ -205,9 +209,10 @@ class Search {
       const auto [a, s] = clamp_club(x[0], x[1]);
       return full(a, s);
     };
-    const Eigen::Vector2d lo(c.angle_min, c.speed_min), hi(c.angle_max, sys_.module().club_speed_cap());
-    return solve(Eigen::Vector2d(theta, v), j, std::max(2, opt_.max_full_putts - ex_.full_putts - 6),
-                 probe, lo, hi, false);
+    const Eigen::Vector2d lo(c.angle_min, c.speed_min),
+        hi(c.angle_max, sys_.module().club_speed_cap());
+    return solve(Eigen::Vector2d(theta, v), j,
+                 std::max(2, opt_.max_full_putts - ex_.full_putts - 6), probe, lo, hi, false);
   }
 
   /// From a neighbour-derived club (the continuity hint): Broyden on the full system.
@@ -219,9 +224,10 @@ class Search {
       const auto [a, s] = clamp_club(x[0], x[1]);
       return full(a, s);
     };
-    const Eigen::Vector2d lo(c.angle_min, c.speed_min), hi(c.angle_max, sys_.module().club_speed_cap());
-    return solve(Eigen::Vector2d(opt_.hint[0], opt_.hint[1]), j, std::max(2, opt_.max_full_putts - 6), probe, lo, hi,
-                 false);
+    const Eigen::Vector2d lo(c.angle_min, c.speed_min),
+        hi(c.angle_max, sys_.module().club_speed_cap());
+    return solve(Eigen::Vector2d(opt_.hint[0], opt_.hint[1]), j,
+                 std::max(2, opt_.max_full_putts - 6), probe, lo, hi, false);
   }
 
   /// Angle only: the secant on the lateral miss at the fixed club speed, on the full system.
@@ -230,7 +236,9 @@ class Search {
     Eigen::Matrix2d j;
     j << -distance_, 0.0, 0.0, 1.0;
     const double v = opt_.fixed_speed;
-    const auto probe = [&](const Eigen::Vector2d& x) { return full(std::clamp(x[0], c.angle_min, c.angle_max), v); };
+    const auto probe = [&](const Eigen::Vector2d& x) {
+      return full(std::clamp(x[0], c.angle_min, c.angle_max), v);
+    };
     const double start = opt_.use_hint ? opt_.hint[0] : aim_ - kLaunchBias;
     return solve(Eigen::Vector2d(start, v), j, std::max(2, opt_.max_full_putts - 6), probe,
                  Eigen::Vector2d(c.angle_min, v), Eigen::Vector2d(c.angle_max, v), true);
@@ -256,11 +264,15 @@ class Search {
         record(theta, v, centre, da, dv);
         return;
       }
-      if (a_minus != a_plus) theta += a_plus ? 0.5 * da : -0.5 * da;
-      else if (!a_minus) da *= 0.5;
+      if (a_minus != a_plus)
+        theta += a_plus ? 0.5 * da : -0.5 * da;
+      else if (!a_minus)
+        da *= 0.5;
       if (dv > 0.0) {
-        if (s_minus != s_plus) v += s_plus ? 0.5 * dv : -0.5 * dv;
-        else if (!s_minus) dv *= 0.5;
+        if (s_minus != s_plus)
+          v += s_plus ? 0.5 * dv : -0.5 * dv;
+        else if (!s_minus)
+          dv *= 0.5;
       }
       if (ex_.full_putts + 5 > opt_.max_full_putts + 10) return;
     }
@@ -314,11 +326,14 @@ Strategy parse_strategy(const std::string& name) {
 
 void TeacherOptions::validate() const {
   if (!learn_speed && !(fixed_speed > 0.0 && std::isfinite(fixed_speed)))
-    throw InputError(fmt::format("teacher: fixed club speed: expected > 0 m/s, got {}", fixed_speed));
+    throw InputError(
+        fmt::format("teacher: fixed club speed: expected > 0 m/s, got {}", fixed_speed));
   if (!(margin_angle >= 0.0 && margin_angle <= 0.1))
-    throw InputError(fmt::format("teacher: margin_angle: expected 0..0.1 rad, got {}", margin_angle));
+    throw InputError(
+        fmt::format("teacher: margin_angle: expected 0..0.1 rad, got {}", margin_angle));
   if (!(margin_speed >= 0.0 && margin_speed <= 0.5))
-    throw InputError(fmt::format("teacher: margin_speed: expected 0..0.5 m/s, got {}", margin_speed));
+    throw InputError(
+        fmt::format("teacher: margin_speed: expected 0..0.5 m/s, got {}", margin_speed));
   if (max_full_putts < 1 || max_ball_putts < 0)
     throw InputError("teacher: putt budgets: expected >= 1 full-system and >= 0 ball-only putts");
 }
@@ -335,7 +350,8 @@ LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> hole, 
   const double dx = hole[0] - field.tee[0], dy = hole[1] - field.tee[1];
   const double a_roll = 5.0 / 7.0 * field.rolling_resistance * kGravity;
   const double climb = field.height(hole[0], hole[1]) - field.height(field.tee[0], field.tee[1]);
-  const double v2 = arrival * arrival + 2.0 * a_roll * std::hypot(dx, dy) + 10.0 / 7.0 * kGravity * climb;
+  const double v2 =
+      arrival * arrival + 2.0 * a_roll * std::hypot(dx, dy) + 10.0 / 7.0 * kGravity * climb;
   return {std::atan2(dy, dx), 7.0 / 5.0 * std::sqrt(std::max(v2, 0.04))};
 }
 

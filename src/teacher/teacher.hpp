@@ -44,15 +44,15 @@ struct TeacherOptions {
   /// Angle only (thesis 6.2.1-6.2.2): the club speed is fixed at `fixed_speed` [m/s].
   bool learn_speed = true;
   double fixed_speed = 0.0;
-  double margin_angle = 0.004;   ///< [rad] (0.23 deg; the launch std under noise is 0.07-0.1 deg)
-  double margin_speed = 0.03;    ///< [m/s] club speed
+  double margin_angle = 0.004;  ///< [rad] (0.23 deg; the launch std under noise is 0.07-0.1 deg)
+  double margin_speed = 0.03;   ///< [m/s] club speed
   /// A starting club (theta [rad], v [m/s]) from neighbouring examples: the full-system search
   /// starts there and the ball-only proposal is skipped (continuity repair, thesis 3.2).
   bool use_hint = false;
   std::array<double, 2> hint{0.0, 0.0};
-  int max_full_putts = 40;       ///< budget per situation
+  int max_full_putts = 40;  ///< budget per situation
   int max_ball_putts = 600;
-  void validate() const;         ///< InputError naming the field
+  void validate() const;  ///< InputError naming the field
 };
 
 /// The teacher's options for `region`: what it learns (angle and speed, or the angle at the

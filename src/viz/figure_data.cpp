@@ -30,7 +30,8 @@ ds::HittingDsData default_command(const ds::HittingModel& model) {
   return data;
 }
 
-double mean_start_distance(const ds::HittingModel& model, const std::vector<ds::Demonstration>& demos) {
+double mean_start_distance(const ds::HittingModel& model,
+                           const std::vector<ds::Demonstration>& demos) {
   double sum = 0.0;
   for (const auto& d : demos) sum += (d.x.front() - model.x_star()).norm();
   return demos.empty() ? 0.3 : sum / static_cast<double>(demos.size());
@@ -38,12 +39,13 @@ double mean_start_distance(const ds::HittingModel& model, const std::vector<ds::
 
 }  // namespace
 
-std::string demonstrations_csv(const std::vector<ds::Demonstration>& demos, const ds::HittingModel& model) {
+std::string demonstrations_csv(const std::vector<ds::Demonstration>& demos,
+                               const ds::HittingModel& model) {
   std::vector<std::vector<double>> rows;
   for (const auto& d : demos)
     for (std::size_t i = 0; i < d.size(); ++i)
-      rows.push_back({static_cast<double>(d.id), d.t[i], d.x[i].x(), d.x[i].y(), d.x[i].z(), d.xdot[i].norm(),
-                      (d.x[i] - model.x_star()).norm()});
+      rows.push_back({static_cast<double>(d.id), d.t[i], d.x[i].x(), d.x[i].y(), d.x[i].z(),
+                      d.xdot[i].norm(), (d.x[i] - model.x_star()).norm()});
   return format_csv({"demo", "t", "x", "y", "z", "speed", "distance"}, rows);
 }
 
@@ -54,15 +56,17 @@ std::string gmm_csv(const ds::HittingModel& model) {
     const Eigen::VectorXd& m = g.means[static_cast<std::size_t>(k)];
     const Eigen::MatrixXd& c = g.covariances[static_cast<std::size_t>(k)];
     const Eigen::Vector3d w = m.head<3>() + model.x_star();
-    rows.push_back({static_cast<double>(k), g.priors[k], w.x(), w.y(), w.z(), c(0, 0), c(0, 1), c(0, 2), c(1, 1),
-                    c(1, 2), c(2, 2)});
+    rows.push_back({static_cast<double>(k), g.priors[k], w.x(), w.y(), w.z(), c(0, 0), c(0, 1),
+                    c(0, 2), c(1, 1), c(1, 2), c(2, 2)});
   }
-  return format_csv({"k", "prior", "mx", "my", "mz", "cxx", "cxy", "cxz", "cyy", "cyz", "czz"}, rows);
+  return format_csv({"k", "prior", "mx", "my", "mz", "cxx", "cxy", "cxz", "cyy", "cyz", "czz"},
+                    rows);
 }
 
 std::string ds_field_csv(const ds::HittingModel& model, const std::vector<ds::Demonstration>& demos,
                          DsPlane plane, int n) {
-  if (n < 2 || n > 400) throw InputError(fmt::format("ds field: grid of {} points: expected 2..400", n));
+  if (n < 2 || n > 400)
+    throw InputError(fmt::format("ds field: grid of {} points: expected 2..400", n));
   const int ia = 0, ib = plane == DsPlane::kXz ? 2 : 1;
   const Eigen::Vector3d& xs = model.x_star();
   double a0 = xs[ia], a1 = xs[ia], b0 = xs[ib], b1 = xs[ib];
@@ -91,24 +95,28 @@ std::string ds_field_csv(const ds::HittingModel& model, const std::vector<ds::De
   return format_csv({"a", "b", "u", "v", "speed"}, rows);
 }
 
-std::string strength_csv(const ds::HittingModel& model, const std::vector<ds::Demonstration>& demos) {
+std::string strength_csv(const ds::HittingModel& model,
+                         const std::vector<ds::Demonstration>& demos) {
   ds::HittingDsData data = default_command(model);
   std::vector<std::vector<double>> rows;
   for (const auto& d : demos)
     for (std::size_t i = 0; i < d.size(); ++i) {
       const Eigen::Vector3d y = d.x[i] - model.x_star();
-      rows.push_back({static_cast<double>(d.id), y.norm(), d.xdot[i].norm(), ds::strength_factor(model, data, y)});
+      rows.push_back({static_cast<double>(d.id), y.norm(), d.xdot[i].norm(),
+                      ds::strength_factor(model, data, y)});
     }
   return format_csv({"demo", "distance", "speed", "strength"}, rows);
 }
 
-std::string modulators_csv(const ds::HittingModel& model, const std::vector<ds::Demonstration>& demos,
+std::string modulators_csv(const ds::HittingModel& model,
+                           const std::vector<ds::Demonstration>& demos,
                            const std::vector<double>& speeds) {
   if (speeds.empty()) throw InputError("modulators: no speeds");
   const double d0 = mean_start_distance(model, demos);
   std::vector<std::string> header{"r"};
   for (double v : speeds) {
-    if (!(v > 0.0 && std::isfinite(v))) throw InputError(fmt::format("--speeds: {} m/s: expected > 0", v));
+    if (!(v > 0.0 && std::isfinite(v)))
+      throw InputError(fmt::format("--speeds: {} m/s: expected > 0", v));
     header.push_back(fmt::format("s_constant_{:g}", v));
     header.push_back(fmt::format("s_sine_{:g}", v));
   }
@@ -129,7 +137,8 @@ std::string modulators_csv(const ds::HittingModel& model, const std::vector<ds::
 std::string heights_csv(const field::Field& f) {
   std::vector<std::vector<double>> rows;
   for (double x = f.bounds[0]; x <= f.bounds[1] + 1e-9; x += 0.02)
-    for (double y = f.bounds[2]; y <= f.bounds[3] + 1e-9; y += 0.02) rows.push_back({x, y, f.height(x, y)});
+    for (double y = f.bounds[2]; y <= f.bounds[3] + 1e-9; y += 0.02)
+      rows.push_back({x, y, f.height(x, y)});
   return format_csv({"x", "y", "z"}, rows);
 }
 

@@ -20,7 +20,8 @@ enum class DsPlane { kXz, kXy };
 DsPlane parse_ds_plane(const std::string& name);
 
 /// demo,t,x,y,z,speed,distance: the demonstrations [m, world], |xdot| [m/s], |x - x*| [m].
-std::string demonstrations_csv(const std::vector<ds::Demonstration>& demos, const ds::HittingModel& model);
+std::string demonstrations_csv(const std::vector<ds::Demonstration>& demos,
+                               const ds::HittingModel& model);
 /// k,prior,mx,my,mz,cxx,cxy,cxz,cyy,cyz,czz: the SEDS GMM's position part in the world frame
 /// (mean + x*; covariance [m^2]).
 std::string gmm_csv(const ds::HittingModel& model);
@@ -31,10 +32,12 @@ std::string ds_field_csv(const ds::HittingModel& model, const std::vector<ds::De
                          DsPlane plane, int n = 30);
 /// demo,distance,speed,strength: along each demonstration, its speed and the model's strength
 /// factor v(x - x*) [m/s].
-std::string strength_csv(const ds::HittingModel& model, const std::vector<ds::Demonstration>& demos);
+std::string strength_csv(const ds::HittingModel& model,
+                         const std::vector<ds::Demonstration>& demos);
 /// r,s_constant_V,s_sine_V for each v^d in `speeds`: the speed modulators (eqs. 2.6a-d) with
 /// d0 = the demonstrations' mean start distance, r from 0 to 1.2 d0.
-std::string modulators_csv(const ds::HittingModel& model, const std::vector<ds::Demonstration>& demos,
+std::string modulators_csv(const ds::HittingModel& model,
+                           const std::vector<ds::Demonstration>& demos,
                            const std::vector<double>& speeds);
 
 /// x,y,z: the field's height on a 2 cm grid.

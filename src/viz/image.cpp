@@ -64,7 +64,8 @@ Image filmstrip(const std::vector<Image>& frames, int gap, std::uint8_t backgrou
 }
 
 double mean_abs_difference(const Image& a, const Image& b) {
-  if (a.width != b.width || a.height != b.height) throw InputError("image difference: different sizes");
+  if (a.width != b.width || a.height != b.height)
+    throw InputError("image difference: different sizes");
   double sum = 0.0;
   for (std::size_t i = 0; i < a.rgb.size(); ++i) sum += std::abs(int(a.rgb[i]) - int(b.rgb[i]));
   return a.rgb.empty() ? 0.0 : sum / static_cast<double>(a.rgb.size());

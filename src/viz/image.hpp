@@ -14,8 +14,12 @@ struct Image {
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0) {}
-  const std::uint8_t* pixel(int x, int y) const { return rgb.data() + 3 * (static_cast<std::size_t>(y) * width + x); }
-  std::uint8_t* pixel(int x, int y) { return rgb.data() + 3 * (static_cast<std::size_t>(y) * width + x); }
+  const std::uint8_t* pixel(int x, int y) const {
+    return rgb.data() + 3 * (static_cast<std::size_t>(y) * width + x);
+  }
+  std::uint8_t* pixel(int x, int y) {
+    return rgb.data() + 3 * (static_cast<std::size_t>(y) * width + x);
+  }
 };
 
 /// PNG file contents of `image` (8-bit RGB). Throws Error if libpng fails.

@@ -35,12 +35,14 @@ class HitObserver final : public system::SessionObserver {
       hit_start = t;
       rest = previous_;  // the last step at the rest pose
     }
-    if (hit_start && !idle_start && (state == ModuleState::kHitting || state == ModuleState::kBraking))
+    if (hit_start && !idle_start &&
+        (state == ModuleState::kHitting || state == ModuleState::kBraking))
       hit_poses.push_back(capture_pose(m, v.d));
     if (hit_start && v.module.ball_hit && !impact) {  // the module saw the hit (measured)
       impact = capture_pose(m, v.d);
     }
-    if (state == ModuleState::kBraking && previous_state_ != ModuleState::kBraking && !braking_start)
+    if (state == ModuleState::kBraking && previous_state_ != ModuleState::kBraking &&
+        !braking_start)
       braking_start = t;
     if (state == ModuleState::kIdle && previous_state_ == ModuleState::kBraking && !idle_start)
       idle_start = t;
@@ -116,7 +118,9 @@ HitRecording record_hit(const control::ModuleConfig& config, const HitRequest& r
   {
     system::Session session(config, options, out);
     std::vector<std::string> script;
-    if (request.hole) script.push_back(fmt::format("hole {} {}", format_exact((*request.hole)[0]), format_exact((*request.hole)[1])));
+    if (request.hole)
+      script.push_back(fmt::format("hole {} {}", format_exact((*request.hole)[0]),
+                                   format_exact((*request.hole)[1])));
     if (manual) {
       script.push_back("angle " + format_exact(*request.angle));
       script.push_back("speed " + format_exact(*request.speed));
@@ -152,7 +156,8 @@ HitRecording record_hit(const control::ModuleConfig& config, const HitRequest& r
   }
   rec.log = out.str();
   if (!rec.outcome)
-    throw Error(fmt::format("render: no ball outcome within {} s of simulated time", request.max_time));
+    throw Error(
+        fmt::format("render: no ball outcome within {} s of simulated time", request.max_time));
   if (!record_poses) return rec;
   rec.frames = std::move(observer.frames);
   rec.ball_path = std::move(observer.ball_path);
@@ -160,10 +165,12 @@ HitRecording record_hit(const control::ModuleConfig& config, const HitRequest& r
   const auto& o = observer;
   if (o.rest) rec.stages.push_back({"rest", *o.rest});
   if (o.hit_start && o.impact && !o.hit_poses.empty())
-    rec.stages.push_back({"acceleration", nearest(o.hit_poses, 0.5 * (*o.hit_start + o.impact->time))});
+    rec.stages.push_back(
+        {"acceleration", nearest(o.hit_poses, 0.5 * (*o.hit_start + o.impact->time))});
   if (o.impact) rec.stages.push_back({"impact", *o.impact});
   if (o.braking_start && o.idle_start && !o.hit_poses.empty())
-    rec.stages.push_back({"braking", nearest(o.hit_poses, 0.5 * (*o.braking_start + *o.idle_start))});
+    rec.stages.push_back(
+        {"braking", nearest(o.hit_poses, 0.5 * (*o.braking_start + *o.idle_start))});
   if (o.idle) rec.stages.push_back({"idle", *o.idle});
   return rec;
 }
@@ -172,7 +179,8 @@ void check_render_outputs(const std::filesystem::path& out) {
   namespace fs = std::filesystem;
   const fs::path dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw IoError(fmt::format("render: -o {}: no folder {}", out.string(), dir.string()));
+  if (!fs::is_directory(dir, ec))
+    throw IoError(fmt::format("render: -o {}: no folder {}", out.string(), dir.string()));
   for (const std::string suffix : {".mp4", "-filmstrip.png"}) {
     const fs::path p = out.string() + suffix;
     if (fs::exists(fs::symlink_status(p, ec)) && !fs::is_regular_file(fs::symlink_status(p, ec)))
@@ -187,15 +195,17 @@ std::filesystem::path find_ffmpeg() {
   std::size_t start = 0;
   while (start <= dirs.size()) {
     const std::size_t end = std::min(dirs.find(':', start), dirs.size());
-    const std::filesystem::path candidate = std::filesystem::path(dirs.substr(start, end - start)) / "ffmpeg";
-    if (!candidate.parent_path().empty() && ::access(candidate.c_str(), X_OK) == 0) return candidate;
+    const std::filesystem::path candidate =
+        std::filesystem::path(dirs.substr(start, end - start)) / "ffmpeg";
+    if (!candidate.parent_path().empty() && ::access(candidate.c_str(), X_OK) == 0)
+      return candidate;
     start = end + 1;
   }
   return {};
 }
 
-RenderOutputs render_hit(const sim::World& world, const HitRecording& rec, const RenderOptions& options,
-                         const std::filesystem::path& out) {
+RenderOutputs render_hit(const sim::World& world, const HitRecording& rec,
+                         const RenderOptions& options, const std::filesystem::path& out) {
   if (options.width % 2 != 0 || options.height % 2 != 0)
     throw InputError(fmt::format("render: --size {}x{}: width and height must be even (video)",
                                  options.width, options.height));
@@ -230,7 +240,8 @@ RenderOutputs render_hit(const sim::World& world, const HitRecording& rec, const
   if (!options.video) return result;
   const std::filesystem::path ffmpeg = find_ffmpeg();
   const auto frame_text = [&](const Pose& p) {
-    return fmt::format("t={:.2f} s  angle {:.3f} rad  speed {:.2f} m/s", p.time, rec.angle, rec.speed);
+    return fmt::format("t={:.2f} s  angle {:.3f} rad  speed {:.2f} m/s", p.time, rec.angle,
+                       rec.speed);
   };
   deco.aim_angle.reset();
   if (!ffmpeg.empty()) {
@@ -245,7 +256,8 @@ RenderOutputs render_hit(const sim::World& world, const HitRecording& rec, const
     bool ok = true;
     for (const auto& pose : rec.frames) {
       renderer.set_pose(pose);
-      if (options.camera == "follow") camera = camera_preset(options.camera, world, renderer.data());
+      if (options.camera == "follow")
+        camera = camera_preset(options.camera, world, renderer.data());
       deco.label = frame_text(pose);
       deco.path = path_until(pose.time);
       const Image img = renderer.render(camera, deco);
@@ -258,7 +270,8 @@ RenderOutputs render_hit(const sim::World& world, const HitRecording& rec, const
     const int status = ::pclose(pipe);
     if (!ok || status != 0) {
       std::filesystem::remove(tmp);
-      throw IoError(fmt::format("render: ffmpeg failed writing {} (exit status {})", result.video.string(), status));
+      throw IoError(fmt::format("render: ffmpeg failed writing {} (exit status {})",
+                                result.video.string(), status));
     }
     std::filesystem::rename(tmp, result.video);
     result.used_ffmpeg = true;
@@ -267,10 +280,12 @@ RenderOutputs render_hit(const sim::World& world, const HitRecording& rec, const
     std::filesystem::create_directories(result.video);
     for (const auto& pose : rec.frames) {
       renderer.set_pose(pose);
-      if (options.camera == "follow") camera = camera_preset(options.camera, world, renderer.data());
+      if (options.camera == "follow")
+        camera = camera_preset(options.camera, world, renderer.data());
       deco.label = frame_text(pose);
       deco.path = path_until(pose.time);
-      write_png(result.video / fmt::format("frame-{:05d}.png", result.frames), renderer.render(camera, deco));
+      write_png(result.video / fmt::format("frame-{:05d}.png", result.frames),
+                renderer.render(camera, deco));
       ++result.frames;
     }
   }

@@ -33,7 +33,7 @@ struct HitRecording {
   std::optional<sim::PuttOutcome> outcome;
   std::array<double, 2> hole{0.0, 0.0};
   double angle = 0.0, speed = 0.0;
-  std::string log;  ///< the session's output
+  std::string log;                               ///< the session's output
   std::vector<std::array<double, 3>> ball_path;  ///< [m] every 10 ms from the impact on
   std::vector<double> ball_path_time;            ///< [s] of each ball_path point
 };

@@ -31,8 +31,8 @@ void on_mujoco_error(const char* text) {
 
 constexpr double kPi = 3.14159265358979323846;
 
-void add_geom(mjvScene& scn, int type, const mjtNum size[3], const mjtNum pos[3], const mjtNum mat[9],
-              const float rgba[4]) {
+void add_geom(mjvScene& scn, int type, const mjtNum size[3], const mjtNum pos[3],
+              const mjtNum mat[9], const float rgba[4]) {
   if (scn.ngeom >= scn.maxgeom) return;
   mjvGeom* g = scn.geoms + scn.ngeom++;
   mjv_initGeom(g, type, size, pos, mat, rgba);
@@ -59,9 +59,10 @@ void start_glfw() {
   if (started) return;
   glfwSetErrorCallback(on_glfw_error);
   if (!glfwInit())
-    throw Error(fmt::format("no display: GLFW cannot start ({}); run under `xvfb-run -a` on a "
-                            "machine without a screen",
-                            glfw_last_error));
+    throw Error(
+        fmt::format("no display: GLFW cannot start ({}); run under `xvfb-run -a` on a "
+                    "machine without a screen",
+                    glfw_last_error));
   started = true;
   std::atexit(glfwTerminate);
 }
@@ -70,7 +71,8 @@ void start_glfw() {
 
 void check_image_size(int width, int height) {
   if (width < 16 || height < 16 || width > 4096 || height > 4096)
-    throw InputError(fmt::format("image size {}x{}: expected 16..4096 pixels each way", width, height));
+    throw InputError(
+        fmt::format("image size {}x{}: expected 16..4096 pixels each way", width, height));
 }
 
 GlWindow::GlWindow(int width, int height, bool visible, const std::string& title) {
@@ -122,9 +124,12 @@ Pose capture_pose(const mjModel* m, const mjData* d) {
 void copy_pose(const mjModel* m, const mjData* src, mjData* dst) {
   dst->time = src->time;
   std::memcpy(dst->qpos, src->qpos, sizeof(mjtNum) * static_cast<std::size_t>(m->nq));
-  std::memcpy(dst->mocap_pos, src->mocap_pos, sizeof(mjtNum) * 3 * static_cast<std::size_t>(m->nmocap));
-  std::memcpy(dst->mocap_quat, src->mocap_quat, sizeof(mjtNum) * 4 * static_cast<std::size_t>(m->nmocap));
-  std::memcpy(dst->userdata, src->userdata, sizeof(mjtNum) * static_cast<std::size_t>(m->nuserdata));
+  std::memcpy(dst->mocap_pos, src->mocap_pos,
+              sizeof(mjtNum) * 3 * static_cast<std::size_t>(m->nmocap));
+  std::memcpy(dst->mocap_quat, src->mocap_quat,
+              sizeof(mjtNum) * 4 * static_cast<std::size_t>(m->nmocap));
+  std::memcpy(dst->userdata, src->userdata,
+              sizeof(mjtNum) * static_cast<std::size_t>(m->nuserdata));
 }
 
 const std::vector<std::string>& camera_names() {
@@ -169,7 +174,8 @@ mjvCamera camera_preset(const std::string& name, const sim::World& world, const 
     c.azimuth = dir * 180.0 / kPi - 20.0;
     c.elevation = -25.0;
   } else {
-    throw InputError(fmt::format("unknown camera '{}' (expected overview, side, top or follow)", name));
+    throw InputError(
+        fmt::format("unknown camera '{}' (expected overview, side, top or follow)", name));
   }
   return c;
 }
@@ -222,7 +228,8 @@ void Renderer::update_scene(mjvCamera& camera, const Decorations& deco) {
     const float black[4] = {0.05f, 0.05f, 0.05f, 1.0f};
     add_geom(scn_, mjGEOM_CYLINDER, disc, at, nullptr, black);
     const float white[4] = {0.95f, 0.95f, 0.95f, 1.0f};
-    add_connector(scn_, mjGEOM_CAPSULE, 0.004, {hole[0], hole[1], z}, {hole[0], hole[1], z + 0.45}, white);
+    add_connector(scn_, mjGEOM_CAPSULE, 0.004, {hole[0], hole[1], z}, {hole[0], hole[1], z + 0.45},
+                  white);
     const mjtNum flag[3] = {0.06, 0.002, 0.04};
     const mjtNum flag_at[3] = {hole[0] + 0.06, hole[1], z + 0.41};
     const float red[4] = {0.9f, 0.1f, 0.1f, 1.0f};
@@ -287,7 +294,8 @@ std::optional<std::array<double, 2>> Renderer::project(const std::array<double, 
   right[2] = fwd[0] * up[1] - fwd[1] * up[0];
   const double z = rel[0] * fwd[0] + rel[1] * fwd[1] + rel[2] * fwd[2];
   if (z <= c.frustum_near) return std::nullopt;
-  const double xn = (rel[0] * right[0] + rel[1] * right[1] + rel[2] * right[2]) * c.frustum_near / z;
+  const double xn =
+      (rel[0] * right[0] + rel[1] * right[1] + rel[2] * right[2]) * c.frustum_near / z;
   const double yn = (rel[0] * up[0] + rel[1] * up[1] + rel[2] * up[2]) * c.frustum_near / z;
   const double half_h = 0.5 * (c.frustum_top - c.frustum_bottom);
   const double half_w = half_h * width_ / height_;

@@ -59,10 +59,10 @@ void copy_pose(const mjModel* m, const mjData* src, mjData* dst);
 /// What is drawn on top of the model.
 struct Decorations {
   bool hole_marker = true;  ///< a dark disc and a flag at the hole (the heightfield covers the cup)
-  std::optional<double> aim_angle;           ///< [rad] an arrow from the ball: the hitting direction
-  std::vector<std::array<double, 3>> path;   ///< the ball's path [m], drawn as a line
-  std::string label;                         ///< text at the top left
-  std::string overlay;                       ///< text block at the bottom left
+  std::optional<double> aim_angle;          ///< [rad] an arrow from the ball: the hitting direction
+  std::vector<std::array<double, 3>> path;  ///< the ball's path [m], drawn as a line
+  std::string label;                        ///< text at the top left
+  std::string overlay;                      ///< text block at the bottom left
 };
 
 /// Camera presets: "overview" (behind the tee, the lane and the hole), "side" (across the lane at
@@ -80,7 +80,9 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   const mjModel* model() const { return m_; }
-  mjData* data() { return d_; }  ///< the renderer's own state: copy a pose in (copy_pose / set_pose)
+  mjData* data() {
+    return d_;
+  }  ///< the renderer's own state: copy a pose in (copy_pose / set_pose)
   void set_pose(const Pose& pose);
   int width() const { return width_; }
   int height() const { return height_; }

@@ -85,12 +85,14 @@ void on_move(GLFWwindow* w, double x, double y) {
     action = shift ? mjMOUSE_MOVE_H : mjMOUSE_MOVE_V;
   else if (m->left)
     action = shift ? mjMOUSE_ROTATE_H : mjMOUSE_ROTATE_V;
-  mjv_moveCamera(m->renderer->model(), action, dx / height, dy / height, &m->renderer->scene(), m->camera);
+  mjv_moveCamera(m->renderer->model(), action, dx / height, dy / height, &m->renderer->scene(),
+                 m->camera);
 }
 
 void on_scroll(GLFWwindow* w, double, double dy) {
   auto* m = static_cast<Mouse*>(glfwGetWindowUserPointer(w));
-  mjv_moveCamera(m->renderer->model(), mjMOUSE_ZOOM, 0, -0.05 * dy, &m->renderer->scene(), m->camera);
+  mjv_moveCamera(m->renderer->model(), mjMOUSE_ZOOM, 0, -0.05 * dy, &m->renderer->scene(),
+                 m->camera);
 }
 
 void on_key(GLFWwindow* w, int key, int, int action, int) {
@@ -124,7 +126,8 @@ std::string overlay_text(const system::SessionView& v) {
   } else if (v.last_outcome) {
     const auto& o = *v.last_outcome;
     text += fmt::format("\nlast hit: {} at ({:.3f}, {:.3f}), {:.3f} m from the hole",
-                        o.sunk ? "holed" : sim::to_string(o.end), o.rest_position[0], o.rest_position[1],
+                        o.sunk ? "holed" : sim::to_string(o.end), o.rest_position[0],
+                        o.rest_position[1],
                         std::hypot(o.rest_position[0] - hole[0], o.rest_position[1] - hole[1]));
   } else {
     text += "\nno hit yet";
@@ -149,7 +152,8 @@ void run_viewer(const control::ModuleConfig& config, const ViewerOptions& option
   const sim::World* world = nullptr;
   session.inspect([&](const system::SessionView& v) { world = &v.world; });
   Renderer renderer(*world, options.width, options.height);
-  session.inspect([&](const system::SessionView& v) { copy_pose(world->model(), v.d, renderer.data()); });
+  session.inspect(
+      [&](const system::SessionView& v) { copy_pose(world->model(), v.d, renderer.data()); });
   mjvCamera camera = camera_preset(options.camera, *world, renderer.data());
 
   Mouse mouse;
@@ -224,8 +228,8 @@ void run_viewer(const control::ModuleConfig& config, const ViewerOptions& option
   commands.join();
   if (!options.screenshot.empty()) {
     write_png(options.screenshot, last);
-    std::cout << fmt::format("screenshot written: {} ({}x{})\n", options.screenshot.string(), last.width,
-                             last.height);
+    std::cout << fmt::format("screenshot written: {} ({}x{})\n", options.screenshot.string(),
+                             last.width, last.height);
   }
 }
 

@@ -18,8 +18,8 @@ namespace mg::viz {
 struct ViewerOptions {
   bool realtime = false;
   bool echo = false;
-  std::string script;                 ///< commands from this file (empty: standard input)
-  std::filesystem::path screenshot;   ///< write the last frame here (PNG) when the session ends
+  std::string script;                ///< commands from this file (empty: standard input)
+  std::filesystem::path screenshot;  ///< write the last frame here (PNG) when the session ends
   int width = 1280, height = 800;
   std::string camera = "overview";
 };

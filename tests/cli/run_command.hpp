@@ -1,13 +1,13 @@
 #pragma once
 // Runs the minigolf binary with arguments and captures exit code, stdout and stderr.
+#include <sys/wait.h>
+#include <unistd.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace mg::cli::testing {
 
@@ -20,8 +20,9 @@ struct CommandResult {
 /// Runs the shell command line `command` (stderr captured apart).
 inline CommandResult run_command_line(const std::string& command) {
   static int counter = 0;
-  const auto err_path = std::filesystem::temp_directory_path() /
-                        ("mg_cli_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  const auto err_path =
+      std::filesystem::temp_directory_path() /
+      ("mg_cli_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   const std::string cmd = command + " 2>" + err_path.string();
   CommandResult r;
   FILE* pipe = ::popen(cmd.c_str(), "r");

@@ -10,17 +10,21 @@ namespace mg::cli::testing {
 namespace {
 
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
-  const auto p = std::filesystem::temp_directory_path() / ("mg_console_" + std::to_string(::getpid()) + "_" + name);
+  const auto p = std::filesystem::temp_directory_path() /
+                 ("mg_console_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(p) << text;
   return p;
 }
 
 TEST(ConsoleCommand, ScriptOnStandardInputDrivesTheArm) {
-  const auto script = write_temp("script.txt", "# a scripted session\nrest\nwait 1\nangle 0.05\nspeed 1.0\nhit\nwait 3\nstatus\nquit\n");
+  const auto script = write_temp(
+      "script.txt",
+      "# a scripted session\nrest\nwait 1\nangle 0.05\nspeed 1.0\nhit\nwait 3\nstatus\nquit\n");
   const CommandResult r = run_minigolf("console < " + script.string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  for (const char* expected : {"Idle -> Rest", "Rest -> Hitting", "Hitting -> Braking: the ball was hit",
-                               "Braking -> Idle", "state Idle", "bye"})
+  for (const char* expected :
+       {"Idle -> Rest", "Rest -> Hitting", "Hitting -> Braking: the ball was hit",
+        "Braking -> Idle", "state Idle", "bye"})
     EXPECT_NE(r.out.find(expected), std::string::npos) << expected << "\n" << r.out;
   std::filesystem::remove(script);
 }

@@ -104,7 +104,8 @@ class ConsoleSignal : public ::testing::TestWithParam<std::pair<int, const char*
 TEST_P(ConsoleSignal, KeepsTheRecordingDuringALongWait) {
   const auto [sig, name] = GetParam();
   Dir dir(std::string("mg_sig_wait_") + name);
-  const fs::path rec = dir.path / "rec.csv", out = dir.path / "out.txt", script = dir.path / "s.txt";
+  const fs::path rec = dir.path / "rec.csv", out = dir.path / "out.txt",
+                 script = dir.path / "s.txt";
   std::ofstream(script) << "record on " << rec.string() << "\nwait 3600\nquit\n";
   const pid_t pid = spawn_shell(std::string("exec ") + MINIGOLF_BINARY + " console --script " +
                                 script.string() + " > " + out.string() + " 2>&1");
@@ -146,10 +147,12 @@ INSTANTIATE_TEST_SUITE_P(Signals, ConsoleSignal,
 TEST(ConsoleSignalRealtime, KeepsTheRecordingWithTheThreadsRunning) {
   // Three threads: the signal may land on the core or robot thread; it must still end the wait.
   Dir dir("mg_sig_rt");
-  const fs::path rec = dir.path / "rec.csv", out = dir.path / "out.txt", script = dir.path / "s.txt";
+  const fs::path rec = dir.path / "rec.csv", out = dir.path / "out.txt",
+                 script = dir.path / "s.txt";
   std::ofstream(script) << "record on " << rec.string() << "\nwait 1000\nquit\n";
-  const pid_t pid = spawn_shell(std::string("exec ") + MINIGOLF_BINARY + " console --realtime --script " +
-                                script.string() + " > " + out.string() + " 2>&1");
+  const pid_t pid =
+      spawn_shell(std::string("exec ") + MINIGOLF_BINARY + " console --realtime --script " +
+                  script.string() + " > " + out.string() + " 2>&1");
   ASSERT_GT(pid, 0);
   ASSERT_TRUE(wait_for_text(out, "recording to", 60s)) << read_all(out);
   std::this_thread::sleep_for(500ms);  // 50 robot-update samples

@@ -19,7 +19,8 @@ TEST(FieldCommand, ShowJsonHasTheResolvedField) {
   const auto r = run_minigolf("field show regular-hill --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  for (const char* key : {"rolling_resistance", "ball_radius", "hole_diameter", "hole_depth", "tee", "bounds"})
+  for (const char* key :
+       {"rolling_resistance", "ball_radius", "hole_diameter", "hole_depth", "tee", "bounds"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["bounds"].size(), 4u);
   EXPECT_EQ(j["tee"].size(), 2u);
@@ -39,7 +40,8 @@ surface: [{type: plane, slope_y: 0.02}]
   const auto r = run_minigolf("field show " + path.string() + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["name"], "my-ramp");
-  const auto putt = run_minigolf("putt --ball-only --field " + path.string() + " --angle 0 --speed 1 --json");
+  const auto putt =
+      run_minigolf("putt --ball-only --field " + path.string() + " --angle 0 --speed 1 --json");
   EXPECT_EQ(putt.exit_code, 0) << putt.err;
   std::filesystem::remove(path);
 }
@@ -47,7 +49,8 @@ surface: [{type: plane, slope_y: 0.02}]
 TEST(FieldCommand, BadFieldsGiveOneLineErrors) {
   const auto path = std::filesystem::temp_directory_path() / "mg_bad_field.yaml";
   std::ofstream(path) << "format_version: 1\nlane: {bounds: [0, 1]}\n";
-  for (const std::string& arg : {std::string("nowhere"), std::string("/nonexistent/x.yaml"), path.string()}) {
+  for (const std::string& arg :
+       {std::string("nowhere"), std::string("/nonexistent/x.yaml"), path.string()}) {
     const auto r = run_minigolf("field show " + arg);
     EXPECT_EQ(r.exit_code, 2) << arg;
     EXPECT_EQ(count_lines(r.err), 1) << r.err;

@@ -18,7 +18,9 @@ fs::path temp(const std::string& name) {
   return fs::temp_directory_path() / ("mg_play_cli_" + std::to_string(::getpid()) + "_" + name);
 }
 
-std::string user_field() { return std::string(MINIGOLF_TEST_DATA_DIR) + "/fields/user-tilted.yaml"; }
+std::string user_field() {
+  return std::string(MINIGOLF_TEST_DATA_DIR) + "/fields/user-tilted.yaml";
+}
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
@@ -41,7 +43,8 @@ TEST(PlayCommands, UserFieldRunsThroughCollectTrainAndEvaluate) {
   EXPECT_NE(r.out.find("collected 4 of 4"), std::string::npos) << r.out;
   r = run_minigolf("train --method gpr " + data.string() + " -o " + model.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run_minigolf("evaluate --field " + user_field() + " --model " + model.string() + " --situations 4 --json");
+  r = run_minigolf("evaluate --field " + user_field() + " --model " + model.string() +
+                   " --situations 4 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   for (const char* key : {"success_ratio", "ci95", "oracle_ceiling", "situations", "sunk", "rows"})
@@ -56,8 +59,9 @@ TEST(PlayCommands, UserFieldRunsThroughCollectTrainAndEvaluate) {
 
 TEST(PlayCommands, SweepWritesTheGridCsv) {
   const auto out = temp("sweep.csv");
-  const auto r = run_minigolf("sweep --field flat --hole 1.5,0 --angles -0.02:0.02:3 --speeds 1.8:2.2:2 --ball-only -o " +
-                              out.string());
+  const auto r = run_minigolf(
+      "sweep --field flat --hole 1.5,0 --angles -0.02:0.02:3 --speeds 1.8:2.2:2 --ball-only -o " +
+      out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::istringstream in(slurp(out));
   std::string header;
@@ -71,36 +75,58 @@ TEST(PlayCommands, SweepWritesTheGridCsv) {
 
 TEST(PlayCommands, BadInputsGetOneLineAndExitTwo) {
   const auto out = temp("bad.csv");
-  expect_one_line_error("collect --field flat --strategy fastest -o " + out.string(), "min-speed or min-angle");
-  expect_one_line_error("collect --field flat --situations list: -o " + out.string(), "--situations 'list:': list.points");
-  expect_one_line_error("collect --field flat --situations line:2,0:2,5:3 -o " + out.string(), "outside the lane");
-  expect_one_line_error("sweep --field flat --angles 0:0.1 --speeds 1:2:3 -o " + out.string(), "LO:HI:N");
-  expect_one_line_error("sweep --field flat --angles 0:0.1:3 --speeds 1:9:3 -o " + out.string(), "safe envelope");
+  expect_one_line_error("collect --field flat --strategy fastest -o " + out.string(),
+                        "min-speed or min-angle");
+  expect_one_line_error("collect --field flat --situations list: -o " + out.string(),
+                        "--situations 'list:': list.points");
+  expect_one_line_error("collect --field flat --situations line:2,0:2,5:3 -o " + out.string(),
+                        "outside the lane");
+  expect_one_line_error("sweep --field flat --angles 0:0.1 --speeds 1:2:3 -o " + out.string(),
+                        "LO:HI:N");
+  expect_one_line_error("sweep --field flat --angles 0:0.1:3 --speeds 1:9:3 -o " + out.string(),
+                        "safe envelope");
   // A model whose inputs do not match a situation.
   const auto data = temp("d.csv"), model = temp("m.json");
   { std::ofstream(data) << "dist,angle,speed\n1,0.1,1.5\n2,0.2,1.6\n3,0.25,1.7\n"; }
-  ASSERT_EQ(run_minigolf("train --inputs dist " + data.string() + " -o " + model.string()).exit_code, 0);
-  expect_one_line_error("evaluate --field flat --model " + model.string(), "does not match a situation");
+  ASSERT_EQ(
+      run_minigolf("train --inputs dist " + data.string() + " -o " + model.string()).exit_code, 0);
+  expect_one_line_error("evaluate --field flat --model " + model.string(),
+                        "does not match a situation");
   // A NaN in a data set.
   { std::ofstream(data) << "xi_x,xi_y,angle,speed\n2,0,nan,1.5\n2,0.1,0.05,1.5\n"; }
   expect_one_line_error("train " + data.string() + " -o " + model.string(), "finite");
-  expect_one_line_error("reproduce --quick --fields flat --datasets /nonexistent -o " + temp("r").string(), "missing");
+  expect_one_line_error(
+      "reproduce --quick --fields flat --datasets /nonexistent -o " + temp("r").string(),
+      "missing");
   expect_one_line_error("collect --field nowhere -o " + out.string(), "unknown field");
   {  // found only after trying: progress lines first, then the one error line
-    const auto r = run_minigolf("collect --field flat --situations line:2.64,-0.1:2.64,0.1:2 --max-full-putts 6 -o " +
-                                out.string());
+    const auto r = run_minigolf(
+        "collect --field flat --situations line:2.64,-0.1:2.64,0.1:2 --max-full-putts 6 -o " +
+        out.string());
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find("minigolf: error: collect: no sinking putt in any of the 2 situations"), std::string::npos) << r.err;
-    EXPECT_NE(slurp(out).find("# unplayable: index=1"), std::string::npos);  // the attempts are kept
+    EXPECT_NE(r.err.find("minigolf: error: collect: no sinking putt in any of the 2 situations"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(slurp(out).find("# unplayable: index=1"),
+              std::string::npos);  // the attempts are kept
   }
   {  // self-teach: a bad budget, and a region no putt reaches (progress lines, then one error line)
-    expect_one_line_error("self-teach --field flat --budget 0 -o " + model.string(), "budget: expected 1..100000");
-    expect_one_line_error("self-teach --field flat --budget -3 -o " + model.string(), "budget: expected 1..100000");
-    expect_one_line_error("self-teach --field nowhere --budget 3 -o " + model.string(), "unknown field");
-    const auto r = run_minigolf("self-teach --field flat --situations line:2.64,-0.1:2.64,0.1:2 --budget 3 -o " + model.string());
+    expect_one_line_error("self-teach --field flat --budget 0 -o " + model.string(),
+                          "budget: expected 1..100000");
+    expect_one_line_error("self-teach --field flat --budget -3 -o " + model.string(),
+                          "budget: expected 1..100000");
+    expect_one_line_error("self-teach --field nowhere --budget 3 -o " + model.string(),
+                          "unknown field");
+    const auto r = run_minigolf(
+        "self-teach --field flat --situations line:2.64,-0.1:2.64,0.1:2 --budget 3 -o " +
+        model.string());
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find("minigolf: error: self-teach: field 'flat': 0 hindsight label(s)"), std::string::npos) << r.err;
-    expect_one_line_error("evaluate --field flat --model " + model.string() + " --save-model " + out.string(), "only with --learn");
+    EXPECT_NE(r.err.find("minigolf: error: self-teach: field 'flat': 0 hindsight label(s)"),
+              std::string::npos)
+        << r.err;
+    expect_one_line_error(
+        "evaluate --field flat --model " + model.string() + " --save-model " + out.string(),
+        "only with --learn");
   }
   fs::remove(data);
   fs::remove(model);
@@ -110,15 +136,18 @@ TEST(PlayCommands, BadInputsGetOneLineAndExitTwo) {
 
 TEST(PlayCommands, SelfTeachWritesAModelThatEvaluateAndPredictPlayUnchanged) {
   const auto model = temp("self.json"), log = temp("self.csv");
-  auto r = run_minigolf("self-teach --field flat --budget 6 --seed 2 --log " + log.string() + " -o " + model.string());
+  auto r = run_minigolf("self-teach --field flat --budget 6 --seed 2 --log " + log.string() +
+                        " -o " + model.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("self-taught flat in 6 full-system putts"), std::string::npos) << r.out;
   EXPECT_EQ(count_lines(slurp(log)), 7);  // header + one row per putt
-  r = run_minigolf("evaluate --field flat --model " + model.string() + " --situations 10 --no-oracle --json");
+  r = run_minigolf("evaluate --field flat --model " + model.string() +
+                   " --situations 10 --no-oracle --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_GE(j["sunk"].get<int>(), 8) << r.out;  // measured 10 of 10
-  r = run_minigolf("evaluate --field flat --model " + model.string() + " --situations 4 --learn --json");
+  r = run_minigolf("evaluate --field flat --model " + model.string() +
+                   " --situations 4 --learn --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["labels_added"].size(), 4u);
   fs::remove(model);

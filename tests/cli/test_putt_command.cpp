@@ -14,7 +14,8 @@ namespace mg::cli::testing {
 namespace {
 
 TEST(PuttCommand, JsonHasTheOutcomeKeys) {
-  const auto r = run_minigolf("putt --field flat --hole 1.5,0 --angle 0 --speed 2.0 --ball-only --json");
+  const auto r =
+      run_minigolf("putt --field flat --hole 1.5,0 --angle 0 --speed 2.0 --ball-only --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["sunk"].is_boolean());
@@ -25,14 +26,16 @@ TEST(PuttCommand, JsonHasTheOutcomeKeys) {
 
 TEST(PuttCommand, AimedPuttOnTheFlatSinks) {
   // Rolls (5/7) v0 after the slide; a 1.8 m/s launch arrives slowly at 1.2 m.
-  const auto r = run_minigolf("putt --field flat --hole 1.2,0 --angle 0 --speed 1.8 --ball-only --json");
+  const auto r =
+      run_minigolf("putt --field flat --hole 1.2,0 --angle 0 --speed 1.8 --ball-only --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(nlohmann::json::parse(r.out)["sunk"].get<bool>()) << r.out;
 }
 
 TEST(PuttCommand, TrajectoryCsvHasTheDocumentedHeader) {
   const auto path = std::filesystem::temp_directory_path() / "mg_traj.csv";
-  const auto r = run_minigolf("putt --field arctan --angle 0.1 --speed 1.5 --ball-only --trajectory " + path.string());
+  const auto r = run_minigolf(
+      "putt --field arctan --angle 0.1 --speed 1.5 --ball-only --trajectory " + path.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(path);
   std::string header;
@@ -97,7 +100,8 @@ TEST(PuttCommand, BadInputGivesOneLineErrorAndNonZeroExit) {
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
     EXPECT_TRUE(r.out.empty()) << args;
   }
-  EXPECT_NE(run_minigolf("putt --field flat --speed 1 --ball-only").exit_code, 0);  // missing --angle
+  EXPECT_NE(run_minigolf("putt --field flat --speed 1 --ball-only").exit_code,
+            0);  // missing --angle
   // Without --ball-only the arm hits the ball (the default since the control module).
   EXPECT_EQ(run_minigolf("putt --field flat --angle 0 --speed 1").exit_code, 0);
 }

@@ -10,8 +10,8 @@
 #include <string>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <sys/stat.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -28,7 +28,8 @@ class Robustness : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("mg_robust_" + std::to_string(::getpid()) + "_" + info->name());
+    dir_ = fs::temp_directory_path() /
+           ("mg_robust_" + std::to_string(::getpid()) + "_" + info->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     // A small smooth data set: angle = atan2(y, x), speed = sqrt(d).
@@ -36,8 +37,8 @@ class Robustness : public ::testing::Test {
     for (int i = 0; i < 20; ++i) {
       const double x = 0.5 + 0.1 * i;
       const double y = -0.6 + 0.06 * i * (i % 3);
-      csv += std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(std::atan2(y, x)) + "," +
-             std::to_string(std::sqrt(std::hypot(x, y))) + "\n";
+      csv += std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(std::atan2(y, x)) +
+             "," + std::to_string(std::sqrt(std::hypot(x, y))) + "\n";
     }
     train_ = write("train.csv", csv);
   }
@@ -53,7 +54,8 @@ class Robustness : public ::testing::Test {
                                  std::initializer_list<std::string> needles) {
     EXPECT_EQ(r.exit_code, 2) << what << "\n" << r.out << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << what << "\n" << r.err;
-    for (const auto& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << what << ": '" << n << "' in\n" << r.err;
+    for (const auto& n : needles)
+      EXPECT_NE(r.err.find(n), std::string::npos) << what << ": '" << n << "' in\n" << r.err;
   }
   fs::path dir_;
   std::string train_;
@@ -61,14 +63,16 @@ class Robustness : public ::testing::Test {
 
 TEST_F(Robustness, RegCovarZeroIsRefusedBeforeAModelIsWritten) {
   const std::string model = path("m.json");
-  const CommandResult r = run_minigolf("train --method gmr --gaussians 2 --reg-covar 0 " + train_ + " -o " + model);
+  const CommandResult r =
+      run_minigolf("train --method gmr --gaussians 2 --reg-covar 0 " + train_ + " -o " + model);
   expect_input_error(r, "--reg-covar 0", {"reg_covar"});
   EXPECT_FALSE(fs::exists(model));
 }
 
 TEST_F(Robustness, GprModelWithAHugeTargetIsRejectedNamingTheFile) {
   const std::string model = path("gpr.json");
-  ASSERT_EQ(run_minigolf("train --method gpr --restarts 1 " + train_ + " -o " + model).exit_code, 0);
+  ASSERT_EQ(run_minigolf("train --method gpr --restarts 1 " + train_ + " -o " + model).exit_code,
+            0);
   nlohmann::json j = nlohmann::json::parse(std::ifstream(model));
   j["gps"][0]["training_targets"][0] = 1e200;
   std::ofstream(model) << j.dump();
@@ -79,7 +83,9 @@ TEST_F(Robustness, GprModelWithAHugeTargetIsRejectedNamingTheFile) {
 
 TEST_F(Robustness, JointGmrQueryAtTheEndOfTheDoubleRangeIsRejectedNamingTheFile) {
   const std::string model = path("joint.json");
-  ASSERT_EQ(run_minigolf("train --method joint-gmr --gaussians 2 " + train_ + " -o " + model).exit_code, 0);
+  ASSERT_EQ(
+      run_minigolf("train --method joint-gmr --gaussians 2 " + train_ + " -o " + model).exit_code,
+      0);
   const std::string queries = write("q.csv", "xi_x,xi_y\n1e308,-1e308\n");
   const CommandResult r = run_minigolf("predict " + model + " " + queries);
   expect_input_error(r, "query 1e308", {queries, "xi_x"});
@@ -87,9 +93,10 @@ TEST_F(Robustness, JointGmrQueryAtTheEndOfTheDoubleRangeIsRejectedNamingTheFile)
 }
 
 TEST_F(Robustness, NegativeSeedIsRefusedNotWrappedAround) {
-  for (const std::string& args : {"train --method gmr " + train_ + " -o " + path("m.json") + " --seed -1",
-                                  "ds demos -o " + path("d.csv") + " --seed -1",
-                                  std::string("console --seed -1 --script /dev/null")}) {
+  for (const std::string& args :
+       {"train --method gmr " + train_ + " -o " + path("m.json") + " --seed -1",
+        "ds demos -o " + path("d.csv") + " --seed -1",
+        std::string("console --seed -1 --script /dev/null")}) {
     const CommandResult r = run_minigolf(args);
     expect_input_error(r, args, {"--seed"});
   }
@@ -97,8 +104,8 @@ TEST_F(Robustness, NegativeSeedIsRefusedNotWrappedAround) {
 
 TEST_F(Robustness, DirectoryAsConfigOrScriptIsRefused) {
   const std::string d = dir_.string();
-  for (const std::string& args : {"console --config " + d + " --script /dev/null", "console --script " + d,
-                                  "putt --angle 0 --speed 1 --config " + d,
+  for (const std::string& args : {"console --config " + d + " --script /dev/null",
+                                  "console --script " + d, "putt --angle 0 --speed 1 --config " + d,
                                   "putt --ball-only --angle 0 --speed 1 --config " + d}) {
     const CommandResult r = run_minigolf(args + " < /dev/null");
     expect_input_error(r, args, {d});
@@ -108,16 +115,19 @@ TEST_F(Robustness, DirectoryAsConfigOrScriptIsRefused) {
 TEST_F(Robustness, PuttWithAConfigWorksOutsideTheRepositoryRoot) {
   // The config leaves hitting_model at its default (a path relative to the repository root).
   const std::string config = write("module.yaml", "field: flat\n");
-  const CommandResult r = run_minigolf("putt --ball-only --angle 0 --speed 1 --json --config " + config);
+  const CommandResult r =
+      run_minigolf("putt --ball-only --angle 0 --speed 1 --json --config " + config);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string cmd = "cd " + dir_.string() + " && " + std::string(MINIGOLF_BINARY) +
-                          " putt --angle 0 --speed 1 --json --config " + config + " > /dev/null 2>&1";
+                          " putt --angle 0 --speed 1 --json --config " + config +
+                          " > /dev/null 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }
 
 TEST_F(Robustness, OverflowingNumberInALearnerModelNamesTheFile) {
   const std::string model = path("gmr.json");
-  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 2 " + train_ + " -o " + model).exit_code, 0);
+  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 2 " + train_ + " -o " + model).exit_code,
+            0);
   std::string text;
   {
     std::ifstream in(model);
@@ -136,18 +146,22 @@ TEST_F(Robustness, CrashReproducersOfIssue13AreInputErrors) {
   const std::string s = write("s.csv", "xi_x,angle\n1e200,0\n2,0.1\n");
   for (const char* method : {"gmr", "joint-gmr"}) {
     const CommandResult r =
-        run_minigolf(std::string("train --method ") + method + " --inputs xi_x --outputs angle " + s + " -o " + path("m.json"));
+        run_minigolf(std::string("train --method ") + method + " --inputs xi_x --outputs angle " +
+                     s + " -o " + path("m.json"));
     expect_input_error(r, method, {s});
   }
-  const std::string demos = write("d.csv", "demo,t,x,y,z,vx,vy,vz\n0,0,-0.3,0,0.02135,0,0,0\n0,0.1,-0.2,0,0.02135,1e200,0,0\n"
-                                           "0,0.2,-0.1,0,0.02135,1,0,0\n0,0.3,0,0,0.02135,1.5,0,0\n");
+  const std::string demos =
+      write("d.csv",
+            "demo,t,x,y,z,vx,vy,vz\n0,0,-0.3,0,0.02135,0,0,0\n0,0.1,-0.2,0,0.02135,1e200,0,0\n"
+            "0,0.2,-0.1,0,0.02135,1,0,0\n0,0.3,0,0,0.02135,1.5,0,0\n");
   const CommandResult r = run_minigolf("ds fit " + demos + " --gaussians 1 -o " + path("h.json"));
   expect_input_error(r, "ds fit 1e200", {demos});
 }
 
 TEST_F(Robustness, MalformedCommandLineNumbersAreInputErrors) {
-  for (const std::string& args : {"train " + train_ + " -o " + path("m.json") + " --gaussians two",
-                                  "ds fit " + train_ + " -o " + path("h.json") + " --gaussians 50"}) {
+  for (const std::string& args :
+       {"train " + train_ + " -o " + path("m.json") + " --gaussians two",
+        "ds fit " + train_ + " -o " + path("h.json") + " --gaussians 50"}) {
     const CommandResult r = run_minigolf(args);
     expect_input_error(r, args, {"--gaussians"});
   }
@@ -161,9 +175,10 @@ TEST_F(Robustness, FigureWritersNeverReplaceFifosLinksOrDevices) {
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
   fs::create_symlink(kept, link);
   for (const std::string& target : {fifo, link, std::string("/dev/full")})
-    for (const std::string& args : {"plot ds -o " + target, "plot field --field flat -o " + target,
-                                    "sweep --field flat --ball-only --angles 0:0:1 --speeds 1:1:1 -o " +
-                                        path("s.csv") + " --plot " + target}) {
+    for (const std::string& args :
+         {"plot ds -o " + target, "plot field --field flat -o " + target,
+          "sweep --field flat --ball-only --angles 0:0:1 --speeds 1:1:1 -o " + path("s.csv") +
+              " --plot " + target}) {
       const CommandResult r = run_minigolf(args);
       expect_input_error(r, args, {"refusing to replace"});
     }
@@ -175,13 +190,14 @@ TEST_F(Robustness, FigureWritersNeverReplaceFifosLinksOrDevices) {
 
 TEST_F(Robustness, BadOutputFoldersAreInputErrors) {
   const std::string file = write("file.txt", "x\n");
-  for (const std::string& args : {"plot ds -o " + path("missing/x.png"), "plot ds -o " + file + "/x.png",
-                                  "plot ds -o " + path("p.png") + " --data-dir " + file,
-                                  "plot ds -o " + path("p.png") + " --data-dir /dev/null",
-                                  "sweep --field flat --ball-only --angles 0:0:1 --speeds 1:1:1 -o " + path("s.csv") +
-                                      " --plot " + dir_.string(),
-                                  "sweep --field flat --ball-only --angles 0:0:1 --speeds 1:1:1 -o " + path("s.csv") +
-                                      " --plot " + path("missing/x.png")}) {
+  for (const std::string& args :
+       {"plot ds -o " + path("missing/x.png"), "plot ds -o " + file + "/x.png",
+        "plot ds -o " + path("p.png") + " --data-dir " + file,
+        "plot ds -o " + path("p.png") + " --data-dir /dev/null",
+        "sweep --field flat --ball-only --angles 0:0:1 --speeds 1:1:1 -o " + path("s.csv") +
+            " --plot " + dir_.string(),
+        "sweep --field flat --ball-only --angles 0:0:1 --speeds 1:1:1 -o " + path("s.csv") +
+            " --plot " + path("missing/x.png")}) {
     const CommandResult r = run_minigolf(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << "\n" << r.err;
@@ -189,8 +205,9 @@ TEST_F(Robustness, BadOutputFoldersAreInputErrors) {
 }
 
 TEST_F(Robustness, HugeDurationsAreRefused) {
-  for (const std::string& args : {std::string("putt --angle 0 --speed 1 --max-duration 1e16"),
-                                  std::string("putt --ball-only --angle 0 --speed 1 --max-duration 1e16")}) {
+  for (const std::string& args :
+       {std::string("putt --angle 0 --speed 1 --max-duration 1e16"),
+        std::string("putt --ball-only --angle 0 --speed 1 --max-duration 1e16")}) {
     const CommandResult r = run_minigolf(args);
     expect_input_error(r, args, {"max_duration"});
   }
@@ -201,13 +218,17 @@ TEST_F(Robustness, GmrOnAnAlmostConstantColumnStaysInsideItsTrainingOutputs) {
   std::string csv = "xi_x,xi_y,angle,speed\n", queries = "xi_x,xi_y\n";
   for (int i = 0; i < 40; ++i) {
     const double y = -0.3 + 0.015 * i;
-    csv += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", 1.9 + i * 1e-15, y, 0.4 * y, 1.2 + 0.5 * y * y);
+    csv += fmt::format("{:.17g},{:.17g},{:.17g},{:.17g}\n", 1.9 + i * 1e-15, y, 0.4 * y,
+                       1.2 + 0.5 * y * y);
     queries += fmt::format("1.9,{:.17g}\n", y + 0.007);
   }
   const std::string data = write("near.csv", csv), q = write("q.csv", queries);
   for (const char* method : {"gmr", "joint-gmr"}) {
     const std::string model = path(std::string(method) + ".json");
-    ASSERT_EQ(run_minigolf(fmt::format("train --method {} --gaussians 2 {} -o {}", method, data, model)).exit_code, 0);
+    ASSERT_EQ(
+        run_minigolf(fmt::format("train --method {} --gaussians 2 {} -o {}", method, data, model))
+            .exit_code,
+        0);
     const CommandResult r = run_minigolf("predict " + model + " " + q);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     std::istringstream lines(r.out);
@@ -216,7 +237,9 @@ TEST_F(Robustness, GmrOnAnAlmostConstantColumnStaysInsideItsTrainingOutputs) {
     int rows = 0;
     while (std::getline(lines, line)) {
       double x, y, angle, angle_std, speed, speed_std;
-      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &x, &y, &angle, &angle_std, &speed, &speed_std), 6);
+      ASSERT_EQ(std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf", &x, &y, &angle, &angle_std,
+                            &speed, &speed_std),
+                6);
       EXPECT_LT(std::abs(angle - 0.4 * y), 0.05) << method << ": " << line;
       EXPECT_LT(std::abs(speed - (1.2 + 0.5 * y * y)), 0.05) << method << ": " << line;
       ++rows;
@@ -228,8 +251,10 @@ TEST_F(Robustness, GmrOnAnAlmostConstantColumnStaysInsideItsTrainingOutputs) {
 
 TEST_F(Robustness, GmrPredictionsFarOutsideTheTrainingOutputsAreFlagged) {
   const std::string model = path("m.json");
-  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 1 " + train_ + " -o " + model).exit_code, 0);
-  const CommandResult r = run_minigolf("predict " + model + " " + write("far.csv", "xi_x,xi_y\n900,0\n"));
+  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 1 " + train_ + " -o " + model).exit_code,
+            0);
+  const CommandResult r =
+      run_minigolf("predict " + model + " " + write("far.csv", "xi_x,xi_y\n900,0\n"));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("warning"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("standard deviations"), std::string::npos) << r.err;
@@ -237,9 +262,11 @@ TEST_F(Robustness, GmrPredictionsFarOutsideTheTrainingOutputsAreFlagged) {
 
 TEST_F(Robustness, ModelsWithABadFixedSpeedAreRefused) {
   std::string csv = "xi_x,xi_y,angle,speed\n";
-  for (int i = 0; i < 12; ++i) csv += fmt::format("2.0,{:.6f},{:.6f},1.2\n", -0.1 + 0.02 * i, -0.05 + 0.01 * i);
+  for (int i = 0; i < 12; ++i)
+    csv += fmt::format("2.0,{:.6f},{:.6f},1.2\n", -0.1 + 0.02 * i, -0.05 + 0.01 * i);
   const std::string good = path("good.json");
-  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 1 --outputs angle " + write("angle.csv", csv) + " -o " + good)
+  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 1 --outputs angle " +
+                         write("angle.csv", csv) + " -o " + good)
                 .exit_code,
             0);
   nlohmann::json model = nlohmann::json::parse(std::ifstream(good));
@@ -254,11 +281,12 @@ TEST_F(Robustness, ModelsWithABadFixedSpeedAreRefused) {
 }
 
 TEST_F(Robustness, SeedsAndBoundsOfTheLearningCommands) {
-  for (const std::string& args : {std::string("curves --field flat --test-seed -1"),
-                                  std::string("curves --field flat --test-seed 18446744073709551616"),
-                                  std::string("curves --field flat --test-seed 1e23"),
-                                  "curves --field flat --checkpoints 3,3 -o " + path("c.csv"),
-                                  "train --method gmr --restarts 1000000000 " + train_ + " -o " + path("m.json")}) {
+  for (const std::string& args :
+       {std::string("curves --field flat --test-seed -1"),
+        std::string("curves --field flat --test-seed 18446744073709551616"),
+        std::string("curves --field flat --test-seed 1e23"),
+        "curves --field flat --checkpoints 3,3 -o " + path("c.csv"),
+        "train --method gmr --restarts 1000000000 " + train_ + " -o " + path("m.json")}) {
     const CommandResult r = run_minigolf(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << "\n" << r.err;
@@ -270,25 +298,30 @@ TEST_F(Robustness, NonRegularAndHugeInputFilesAreRefusedAtOnce) {
   const std::string fifo = path("in.fifo");
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
   const std::string model = path("m.json");
-  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 1 " + train_ + " -o " + model).exit_code, 0);
+  ASSERT_EQ(run_minigolf("train --method gmr --gaussians 1 " + train_ + " -o " + model).exit_code,
+            0);
   const std::string long_name(5000, 'x');
-  for (const std::string& args : {"predict /dev/zero " + train_, "predict " + model + " /dev/zero",
-                                  "predict " + fifo + " " + train_, "train --method gmr " + fifo + " -o " + path("n.json"),
-                                  "field show " + fifo, "field show " + long_name, "field show " + long_name + ".yaml",
-                                  "console --script " + fifo, std::string("console --script /dev/zero"),
-                                  "evaluate --field flat --situations 2 --model " + fifo}) {
+  for (const std::string& args :
+       {"predict /dev/zero " + train_, "predict " + model + " /dev/zero",
+        "predict " + fifo + " " + train_, "train --method gmr " + fifo + " -o " + path("n.json"),
+        "field show " + fifo, "field show " + long_name, "field show " + long_name + ".yaml",
+        "console --script " + fifo, std::string("console --script /dev/zero"),
+        "evaluate --field flat --situations 2 --model " + fifo}) {
     const auto t0 = std::chrono::steady_clock::now();
-    const CommandResult r = run_command_line("timeout 60 " + std::string(MINIGOLF_BINARY) + " " + args);
+    const CommandResult r =
+        run_command_line("timeout 60 " + std::string(MINIGOLF_BINARY) + " " + args);
     EXPECT_EQ(r.exit_code, 2) << args.substr(0, 200) << "\n" << r.err.substr(0, 400);
     EXPECT_EQ(count_lines(r.err), 1) << r.err.substr(0, 400);
     EXPECT_LE(r.err.size(), 400u) << "a long name is shortened in the message";
-    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20)) << args.substr(0, 200);
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(20))
+        << args.substr(0, 200);
   }
 }
 
 TEST_F(Robustness, HolesOnTheTeeAndOversizedCountsAreRefusedWithTheirRange) {
-  const CommandResult tee = run_minigolf("sweep --field flat --hole 0,0 --ball-only --angles 0:0:1 --speeds 1:1:1 -o " +
-                                         path("s.csv"));
+  const CommandResult tee =
+      run_minigolf("sweep --field flat --hole 0,0 --ball-only --angles 0:0:1 --speeds 1:1:1 -o " +
+                   path("s.csv"));
   expect_input_error(tee, "--hole 0,0", {"on the tee"});
   std::ifstream in(std::string(MINIGOLF_SOURCE_DIR) + "/data/fields/flat.yaml");
   std::string field((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -1,10 +1,10 @@
 // `minigolf study launch-error` end to end (few hits: every hit is a full arm putt).
+#include <unistd.h>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -28,10 +28,12 @@ std::string read(const std::filesystem::path& p) {
 
 TEST(StudyCommand, WritesCsvAndMarkdownAndPrintsTheTable) {
   const auto dir = temp_dir("table");
-  const auto r = run_minigolf("study launch-error --angles-deg -10,0 --hits 2 --out " + dir.string());
+  const auto r =
+      run_minigolf("study launch-error --angles-deg -10,0 --hits 2 --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(count_lines(r.err), 4) << r.err;  // progress: one line per hit
-  EXPECT_NE(r.out.find("| angle [deg] | n | mean error [deg] | std [deg] |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("| angle [deg] | n | mean error [deg] | std [deg] |"), std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("| -10 | 2 |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("| 0 | 2 |"), std::string::npos) << r.out;
   EXPECT_EQ(read(dir / "launch_error.md"), r.out);
@@ -44,8 +46,10 @@ TEST(StudyCommand, WritesCsvAndMarkdownAndPrintsTheTable) {
 
 TEST(StudyCommand, JsonSummaryIsReproducibleAndZeroNoiseHasZeroStd) {
   const auto dir = temp_dir("json");
-  const std::string args = "study launch-error --angles-deg 0 --hits 2 --torque-noise 0 "
-                           "--placement-noise 0 --json --out " + dir.string();
+  const std::string args =
+      "study launch-error --angles-deg 0 --hits 2 --torque-noise 0 "
+      "--placement-noise 0 --json --out " +
+      dir.string();
   const auto a = run_minigolf(args);
   ASSERT_EQ(a.exit_code, 0) << a.err;
   const auto j = nlohmann::json::parse(a.out);
@@ -61,12 +65,21 @@ TEST(StudyCommand, JsonSummaryIsReproducibleAndZeroNoiseHasZeroStd) {
 TEST(StudyCommand, BadOptionsGiveOneLineErrorAndExit2) {
   const auto dir = temp_dir("bad");
   for (const std::string& opt : {
-           std::string("--hits 0"), std::string("--hits 2x"), std::string("--hits -1"),
-           std::string("--speed abc"), std::string("--speed 9"), std::string("--speed nan"),
-           std::string("--angles-deg 0,,5"), std::string("--angles-deg 90"),
-           std::string("--angles-deg 1e"), std::string("--torque-noise -0.1"),
-           std::string("--torque-noise 2"), std::string("--placement-noise 1"),
-           std::string("--seed -3"), std::string("--seed 1.5"), std::string("--field mars"),
+           std::string("--hits 0"),
+           std::string("--hits 2x"),
+           std::string("--hits -1"),
+           std::string("--speed abc"),
+           std::string("--speed 9"),
+           std::string("--speed nan"),
+           std::string("--angles-deg 0,,5"),
+           std::string("--angles-deg 90"),
+           std::string("--angles-deg 1e"),
+           std::string("--torque-noise -0.1"),
+           std::string("--torque-noise 2"),
+           std::string("--placement-noise 1"),
+           std::string("--seed -3"),
+           std::string("--seed 1.5"),
+           std::string("--field mars"),
        }) {
     const auto r = run_minigolf("study launch-error " + opt + " --out " + dir.string());
     EXPECT_EQ(r.exit_code, 2) << opt << ": " << r.err;

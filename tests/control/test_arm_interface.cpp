@@ -138,7 +138,8 @@ struct Rig {
     }
     for (int j = 0; j < 7; ++j) {
       all_finite = all_finite && std::isfinite(c.tau[j]);
-      max_torque_ratio = std::max(max_torque_ratio, std::abs(c.tau[j]) / model.arm().torque_limit()[j]);
+      max_torque_ratio =
+          std::max(max_torque_ratio, std::abs(c.tau[j]) / model.arm().torque_limit()[j]);
     }
     arm.advance();
     ++ticks;
@@ -151,8 +152,9 @@ struct Rig {
   /// Rest at `angle`, settle, request the hit; true if the module is then Hitting.
   bool start_hit(double angle, double speed) {
     if (!request_rest(model, md, angle)) return false;
-    run_until([&] { return md.state == ModuleState::kRest && md.at_rest_pose && md.time_in_state > 0.2; },
-              3000);
+    run_until(
+        [&] { return md.state == ModuleState::kRest && md.at_rest_pose && md.time_in_state > 0.2; },
+        3000);
     if (!request_hit(model, md, angle, speed)) return false;
     tick();
     return md.state == ModuleState::kHitting;
@@ -258,7 +260,7 @@ TEST(ArmInterface, ClubReachesBallIsTheHeadBoxAgainstTheBall) {
   };
   EXPECT_FALSE(reaches(kBallRadius + 1e-6, 0.0, 0.0));  // just in front of the face
   EXPECT_TRUE(reaches(kBallRadius - 1e-6, 0.0, 0.0));   // touching
-  EXPECT_TRUE(reaches(-0.2, 0.0, 0.0));                  // the head went through its place
+  EXPECT_TRUE(reaches(-0.2, 0.0, 0.0));                 // the head went through its place
   const double toe = 0.5 * club.head_length;
   EXPECT_TRUE(reaches(0.0, toe + kBallRadius - 1e-6, 0.0));   // at the toe
   EXPECT_FALSE(reaches(0.0, toe + kBallRadius + 1e-6, 0.0));  // beside it: a miss

@@ -147,7 +147,8 @@ TEST(FullSystem, RequestsAboveTheArmCapHitAtTheCapAlongTheAngle) {
 TEST(FullSystem, LimitsHoldInRandomSweep) {
   std::mt19937 rng(20261123);
   const ModuleConfig c;
-  std::uniform_real_distribution<double> angle(c.angle_min, c.angle_max), speed(c.speed_min, c.speed_max);
+  std::uniform_real_distribution<double> angle(c.angle_min, c.angle_max),
+      speed(c.speed_min, c.speed_max);
   for (int i = 0; i < 6; ++i) {
     const double a = angle(rng), v = speed(rng);
     const auto r = rig().putt(a, v);
@@ -162,8 +163,8 @@ TEST(FullSystem, LimitsHoldInRandomSweep) {
 
 TEST(FullSystem, InvalidRequestsAreRefusedAndNoHitStarts) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (auto [a, v] : {std::pair{0.0, nan}, std::pair{nan, 1.0}, std::pair{0.0, 5.0},
-                      std::pair{0.9, 1.0}}) {
+  for (auto [a, v] :
+       {std::pair{0.0, nan}, std::pair{nan, 1.0}, std::pair{0.0, 5.0}, std::pair{0.9, 1.0}}) {
     const auto r = rig().putt(a, v);
     EXPECT_TRUE(r.hit_refused) << a << " " << v;
     EXPECT_FALSE(r.hit) << a << " " << v;
@@ -212,8 +213,8 @@ TEST(FullSystem, ScratchCachesDoNotChangeBits) {
   const auto plain = rig().putt(0.02, 1.3);
   PuttScratch scratch;
   const auto fresh = rig().putt(0.02, 1.3, {}, &scratch);
-  rig().putt(0.2, 0.9, {}, &scratch);                          // another angle in between
-  const auto cached = rig().putt(0.02, 1.3, {}, &scratch);    // approach from the cache
+  rig().putt(0.2, 0.9, {}, &scratch);                       // another angle in between
+  const auto cached = rig().putt(0.02, 1.3, {}, &scratch);  // approach from the cache
   expect_same_bits(plain, fresh, "fresh scratch");
   expect_same_bits(plain, cached, "cached approach");
   EXPECT_EQ(cached.arm_steps, plain.arm_steps - std::lround(plain.rest_time / 0.001))
@@ -237,11 +238,13 @@ TEST(FullSystem, HandOffKeepsTheOutcome) {
     const auto arm = rig().putt(a, v, {}, &scratch);
     const auto ball = rig().putt(a, v, rig().with_ball_world(), &scratch);
     ASSERT_TRUE(ball.hit) << a << " " << v;
-    std::printf("[hand-off] %.2f rad %.2f m/s: %s after %.3f s, %d fallbacks, %s, rest %.6f %.6f vs %.6f %.6f\n", a, v,
-                ball.handed_off ? "handed off" : "not handed off", ball.handoff_time,
-                ball.handoff_fallbacks, sim::to_string(ball.outcome.end).c_str(),
-                ball.outcome.rest_position[0], ball.outcome.rest_position[1],
-                arm.outcome.rest_position[0], arm.outcome.rest_position[1]);
+    std::printf(
+        "[hand-off] %.2f rad %.2f m/s: %s after %.3f s, %d fallbacks, %s, rest %.6f %.6f vs %.6f "
+        "%.6f\n",
+        a, v, ball.handed_off ? "handed off" : "not handed off", ball.handoff_time,
+        ball.handoff_fallbacks, sim::to_string(ball.outcome.end).c_str(),
+        ball.outcome.rest_position[0], ball.outcome.rest_position[1], arm.outcome.rest_position[0],
+        arm.outcome.rest_position[1]);
     // A ball that comes back towards the club is rolled on with the arm (a fallback).
     EXPECT_TRUE(ball.handed_off || ball.handoff_fallbacks > 0) << a << " " << v;
     if (ball.handed_off) {
@@ -291,7 +294,8 @@ TEST(FullSystem, KinematicAndAtRestStartsHitLikeTheApproach) {
 // Putts on threads sharing the worlds and the model, each with its own data and scratch, give
 // the serial bits.
 TEST(FullSystem, PuttsOnThreadsGiveTheSerialBits) {
-  const std::vector<std::pair<double, double>> shots{{0.01, 1.6}, {0.3, 1.0}, {-0.1, 2.0}, {0.5, 0.8}};
+  const std::vector<std::pair<double, double>> shots{
+      {0.01, 1.6}, {0.3, 1.0}, {-0.1, 2.0}, {0.5, 0.8}};
   std::vector<FullPuttResult> serial;
   for (const auto& [a, v] : shots) serial.push_back(rig().putt(a, v, rig().with_ball_world()));
   std::vector<FullPuttResult> parallel(shots.size());

@@ -37,10 +37,10 @@ namespace {
 
 struct Bench {
   sim::World world{make_world_with_arm(field::load_field("flat"))};
-  ModuleModel model{make_module_model(
-      world,
-      ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) + "/data/models/hitting-default.json"),
-      ModuleConfig{})};
+  ModuleModel model{make_module_model(world,
+                                      ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) +
+                                                             "/data/models/hitting-default.json"),
+                                      ModuleConfig{})};
   sim::DataPtr data{world.make_data()};
   ModuleData md{model};
   perception::SimulatorPerception truth{world, data.get()};
@@ -92,7 +92,8 @@ TEST(MinigolfModule, WholeHitCycleWithoutAllocation) {
   Bench b;
   long allocations = 0;
   ASSERT_TRUE(request_rest(b.model, b.md, 0.1));
-  allocations += b.run_until([&] { return b.md.state == ModuleState::kRest && b.md.at_rest_pose; }, 3000);
+  allocations +=
+      b.run_until([&] { return b.md.state == ModuleState::kRest && b.md.at_rest_pose; }, 3000);
   ASSERT_TRUE(b.md.at_rest_pose);
   ASSERT_TRUE(request_hit(b.model, b.md, 0.1, 1.0));
   allocations += b.tick();
@@ -153,7 +154,7 @@ TEST(MinigolfModule, RestPoseIsBehindTheBallAlongTheHittingDirection) {
     const Eigen::Vector3d rest = rest_face_position(b.model, a);
     const Eigen::Vector3d psi(std::cos(a), std::sin(a), 0.0);
     const Eigen::Vector3d rel = rest - b.model.hitting().x_star();
-    EXPECT_LT(rel.dot(psi), -0.1) << a;                       // behind the ball
+    EXPECT_LT(rel.dot(psi), -0.1) << a;                                         // behind the ball
     EXPECT_NEAR((rel - rel.dot(psi) * psi).head<2>().norm(), 0.0, 1e-12) << a;  // on the line
   }
 }

@@ -6,13 +6,13 @@
 
 #include <pthread.h>
 
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <thread>
-#include <sys/stat.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "core/error.hpp"
 
@@ -54,7 +54,8 @@ TEST(Io, AtomicWriteNeverReplacesWhatIsNotARegularFile) {
 // Issue 22: input files are regular and bounded; FIFOs, devices and huge files are refused at
 // once (a FIFO with no writer would block forever, /dev/zero would exhaust memory).
 TEST(Io, InputsMustBeRegularBoundedFiles) {
-  const auto dir = std::filesystem::temp_directory_path() / ("mg_io_in_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("mg_io_in_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto fifo = dir / "fifo", big = dir / "big", ok = dir / "ok";
@@ -80,7 +81,8 @@ TEST(Io, InputsMustBeRegularBoundedFiles) {
 }
 
 TEST(Io, OutputTargetsAreCheckedBeforeTheWork) {
-  const auto dir = std::filesystem::temp_directory_path() / ("mg_io_out_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("mg_io_out_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto fifo = dir / "fifo", link = dir / "link";
@@ -89,8 +91,9 @@ TEST(Io, OutputTargetsAreCheckedBeforeTheWork) {
   std::filesystem::create_symlink(dir / "target", link);
   EXPECT_NO_THROW(check_output_file(dir / "new.png"));
   EXPECT_NO_THROW(check_output_file(dir / "target"));
-  for (const auto& bad : {fifo, link, dir, std::filesystem::path("/dev/full"), std::filesystem::path("/dev/null"),
-                          dir / "missing" / "x.png", dir / "target" / "x.png"})
+  for (const auto& bad :
+       {fifo, link, dir, std::filesystem::path("/dev/full"), std::filesystem::path("/dev/null"),
+        dir / "missing" / "x.png", dir / "target" / "x.png"})
     EXPECT_THROW(check_output_file(bad), IoError) << bad;
   EXPECT_THROW(ensure_output_dir(dir / "target"), IoError);
   EXPECT_THROW(ensure_output_dir(link), IoError);
@@ -103,7 +106,8 @@ TEST(Io, OutputTargetsAreCheckedBeforeTheWork) {
 
 // A write killed by SIGTERM leaves no temporary file (the handler removes it).
 TEST(Io, AKilledWriteLeavesNoTemporaryFile) {
-  const auto dir = std::filesystem::temp_directory_path() / ("mg_io_kill_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("mg_io_kill_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const pid_t child = ::fork();
   ASSERT_GE(child, 0);
@@ -114,7 +118,8 @@ TEST(Io, AKilledWriteLeavesNoTemporaryFile) {
   }
   bool seen = false;
   for (int i = 0; i < 400 && !seen; ++i) {
-    for (const auto& e : std::filesystem::directory_iterator(dir)) seen = seen || e.path().extension() == ".tmp";
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+      seen = seen || e.path().extension() == ".tmp";
     if (!seen) ::usleep(10000);
   }
   ::kill(child, SIGTERM);

@@ -44,9 +44,11 @@ TEST(Demonstrations, GeneratorIsHumanLikeAndEndsAtTheBallAlongPsi0) {
 TEST(Demonstrations, SameSeedSameBitsDifferentSeedDifferentData) {
   DemoGeneratorConfig cfg;
   Rng a(3), b(3), c(4);
-  EXPECT_EQ(format_demonstrations(generate_demonstrations(cfg, a)), format_demonstrations(generate_demonstrations(cfg, b)));
+  EXPECT_EQ(format_demonstrations(generate_demonstrations(cfg, a)),
+            format_demonstrations(generate_demonstrations(cfg, b)));
   Rng a2(3);
-  EXPECT_NE(format_demonstrations(generate_demonstrations(cfg, a2)), format_demonstrations(generate_demonstrations(cfg, c)));
+  EXPECT_NE(format_demonstrations(generate_demonstrations(cfg, a2)),
+            format_demonstrations(generate_demonstrations(cfg, c)));
 }
 
 TEST(Demonstrations, CsvRoundTripIsExact) {
@@ -78,11 +80,17 @@ TEST(Demonstrations, ShippedDefaultSetIsValid) {
 TEST(Demonstrations, BadInputIsAClearError) {
   const std::string header = "demo,t,x,y,z,vx,vy,vz\n";
   EXPECT_THROW(demonstrations_from_table(parse_csv(header, "empty")), InputError);
-  EXPECT_THROW(demonstrations_from_table(parse_csv(header + "0,0,0,0,0,1,0,0\n", "one")), InputError);
+  EXPECT_THROW(demonstrations_from_table(parse_csv(header + "0,0,0,0,0,1,0,0\n", "one")),
+               InputError);
   EXPECT_THROW(parse_csv(header + "0,0,nan,0,0,1,0,0\n0,1,0,0,0,1,0,0\n", "nan"), InputError);
-  EXPECT_THROW(demonstrations_from_table(parse_csv("demo,t,x,y,z\n0,0,0,0,0\n0,1,0,0,0\n", "cols")), InputError);
-  EXPECT_THROW(demonstrations_from_table(parse_csv(header + "0,1,0,0,0,1,0,0\n0,0.5,0,0,0,1,0,0\n", "time")), InputError);
-  EXPECT_THROW(demonstrations_from_table(parse_csv(header + "0.5,0,0,0,0,1,0,0\n0.5,1,0,0,0,1,0,0\n", "id")), InputError);
+  EXPECT_THROW(demonstrations_from_table(parse_csv("demo,t,x,y,z\n0,0,0,0,0\n0,1,0,0,0\n", "cols")),
+               InputError);
+  EXPECT_THROW(
+      demonstrations_from_table(parse_csv(header + "0,1,0,0,0,1,0,0\n0,0.5,0,0,0,1,0,0\n", "time")),
+      InputError);
+  EXPECT_THROW(
+      demonstrations_from_table(parse_csv(header + "0.5,0,0,0,0,1,0,0\n0.5,1,0,0,0,1,0,0\n", "id")),
+      InputError);
   EXPECT_THROW(summarize_demonstrations({}), InputError);
 
   // Demonstrations that do not share an end point.
@@ -106,12 +114,15 @@ TEST(Demonstrations, BadInputIsAClearError) {
 
 // Found by fuzzing (issue 13): one velocity of 1e200 crashed `ds fit --gaussians 1`.
 TEST(Demonstrations, HugeValuesAreAClearErrorNamingTheFile) {
-  const CsvTable t = parse_csv("demo,t,x,y,z,vx,vy,vz\n0,0,0,0,0,1e200,0,0\n0,0.1,0.1,0,0,1,0,0\n0,0.2,0.2,0,0,0,0,0\n", "d.csv");
+  const CsvTable t = parse_csv(
+      "demo,t,x,y,z,vx,vy,vz\n0,0,0,0,0,1e200,0,0\n0,0.1,0.1,0,0,1,0,0\n0,0.2,0.2,0,0,0,0,0\n",
+      "d.csv");
   try {
     demonstrations_from_table(t, 1);
     ADD_FAILURE() << "expected an InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("d.csv: row 1: column 'vx'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("d.csv: row 1: column 'vx'"), std::string::npos)
+        << e.what();
   }
 }
 

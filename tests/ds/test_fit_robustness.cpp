@@ -37,7 +37,8 @@ std::vector<Demonstration> cubic_demos(double noise, std::uint64_t seed) {
     const Vec3 m1(speed * duration, 0.0, 0.0);
     for (int i = 0; i <= 50; ++i) {
       const double s = i / 50.0;
-      const double h00 = 2 * s * s * s - 3 * s * s + 1, h01 = -2 * s * s * s + 3 * s * s, h11 = s * s * s - s * s;
+      const double h00 = 2 * s * s * s - 3 * s * s + 1, h01 = -2 * s * s * s + 3 * s * s,
+                   h11 = s * s * s - s * s;
       const double d00 = 6 * s * s - 6 * s, d01 = -6 * s * s + 6 * s, d11 = 3 * s * s - 2 * s;
       Vec3 x = h00 * p0 + h01 * ball + h11 * m1;
       Vec3 v = (d00 * p0 + d01 * ball + d11 * m1) / duration;
@@ -79,7 +80,8 @@ TEST_P(FitEveryK, SucceedsAndIsStableOnSmoothAndNoisyDemonstrations) {
     opt.seds.max_evaluations = 600;
     HittingFitReport rep;
     std::optional<HittingModel> model;
-    ASSERT_NO_THROW(model.emplace(fit_hitting_model(c.demos, opt, &rep))) << c.name << ", K = " << k;
+    ASSERT_NO_THROW(model.emplace(fit_hitting_model(c.demos, opt, &rep)))
+        << c.name << ", K = " << k;
     const int used = static_cast<int>(rep.seds.components.size());
     EXPECT_GE(used, 1);
     EXPECT_LE(used, k);
@@ -97,7 +99,8 @@ TEST_P(FitEveryK, SucceedsAndIsStableOnSmoothAndNoisyDemonstrations) {
     EXPECT_LT(err.direction_rmse * kDeg, 70.0) << c.name << ", K = " << k;
     // Deterministic: the same fit again gives the same model, bit for bit.
     const HittingModel again = fit_hitting_model(c.demos, opt);
-    EXPECT_EQ(hitting_model_to_json(again).dump(), hitting_model_to_json(*model).dump()) << c.name << ", K = " << k;
+    EXPECT_EQ(hitting_model_to_json(again).dump(), hitting_model_to_json(*model).dump())
+        << c.name << ", K = " << k;
   }
 }
 
@@ -110,7 +113,8 @@ TEST(FitBounds, TooManyGaussiansIsAnInputErrorNamingTheBound) {
     fit_hitting_model(cubic_demos(1e-5, 1), opt);
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(std::to_string(kMaxSedsGaussians)), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(std::to_string(kMaxSedsGaussians)), std::string::npos)
+        << e.what();
   }
 }
 

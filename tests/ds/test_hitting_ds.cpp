@@ -7,8 +7,8 @@
 #include <new>
 #include <numbers>
 
-#include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include "core/error.hpp"
 #include "core/io.hpp"
@@ -74,9 +74,11 @@ TEST_P(BothModels, RolloutsFromAGridAroundTheDemonstrationsReachTheBallAlongPsi0
         c.start = m.x_star() + Vec3(bx, by, bz);
         c.speed = m.default_speed();
         const RolloutResult r = rollout(m, c);
-        ASSERT_TRUE(r.reached) << "start " << c.start.transpose() << ": " << r.stop_reason << " error " << r.position_error;
+        ASSERT_TRUE(r.reached) << "start " << c.start.transpose() << ": " << r.stop_reason
+                               << " error " << r.position_error;
         worst_pos = std::max(worst_pos, r.position_error);
-        EXPECT_LT(std::abs(r.velocity.norm() / c.speed - 1.0), 0.01) << "start " << c.start.transpose();
+        EXPECT_LT(std::abs(r.velocity.norm() / c.speed - 1.0), 0.01)
+            << "start " << c.start.transpose();
         worst_speed = std::max(worst_speed, std::abs(r.velocity.norm() / c.speed - 1.0));
         // The direction guarantee is for starts where the demonstrations start (>= 0.25 m behind);
         // closer starts begin inside the guidance zone, beside the ball, and only have to arrive.
@@ -100,14 +102,16 @@ TEST_P(BothModels, RolloutsFromFarOutsideReachTheBallWithoutStallingOrDiverging)
     for (double az = 0.0; az < 2.0 * std::numbers::pi - 1e-9; az += std::numbers::pi / 4)
       for (double el : {-0.6, 0.0, 0.7}) {
         HittingCommand c;
-        c.start = m.x_star() + r * Vec3(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
+        c.start = m.x_star() +
+                  r * Vec3(std::cos(az) * std::cos(el), std::sin(az) * std::cos(el), std::sin(el));
         c.speed = m.default_speed();
         RolloutOptions o;
         o.record = false;
         o.max_duration = 60.0;
         const RolloutResult res = rollout(m, c, o);
-        EXPECT_TRUE(res.reached) << "start " << c.start.transpose() << ": " << res.stop_reason << ", error "
-                                 << res.position_error << " after " << res.duration << " s";
+        EXPECT_TRUE(res.reached) << "start " << c.start.transpose() << ": " << res.stop_reason
+                                 << ", error " << res.position_error << " after " << res.duration
+                                 << " s";
       }
 }
 
@@ -122,12 +126,15 @@ TEST_P(BothModels, AnyAngleAndSpeedIsHitWithinOneDegreeAndOnePercent) {
           c.angle = theta;
           c.speed = speed;
           c.modulator = mod;
-          c.start = m.x_star() + rotation_about_z(theta) * s;  // the demonstrated region, turned with the shot
+          c.start = m.x_star() +
+                    rotation_about_z(theta) * s;  // the demonstrated region, turned with the shot
           const RolloutResult r = rollout(m, c);
           ASSERT_TRUE(r.reached) << r.stop_reason;
           EXPECT_LT(angle_error(r.velocity, theta, m), 1.0 * kDeg)
-              << to_string(mod) << " theta " << theta << " v " << speed << " start " << s.transpose();
-          EXPECT_NEAR(r.velocity.norm(), speed, 0.01 * speed) << to_string(mod) << " theta " << theta << " start " << s.transpose();
+              << to_string(mod) << " theta " << theta << " v " << speed << " start "
+              << s.transpose();
+          EXPECT_NEAR(r.velocity.norm(), speed, 0.01 * speed)
+              << to_string(mod) << " theta " << theta << " start " << s.transpose();
           EXPECT_LT(r.position_error, 0.002);
         }
 }
@@ -163,8 +170,10 @@ TEST(HittingDs, ShippedModelSatisfiesTheConstraintsAndReproducesTheDemonstration
   RecordProperty("direction_rmse_deg", std::to_string(e.direction_rmse / kDeg));
   RecordProperty("mean_path_distance", std::to_string(e.mean_path_distance));
   RecordProperty("max_path_distance", std::to_string(e.max_path_distance));
-  std::printf("reproduction: velocity RMSE %.4f m/s, direction RMSE %.2f deg, path distance mean %.4f m max %.4f m\n",
-              e.velocity_rmse, e.direction_rmse / kDeg, e.mean_path_distance, e.max_path_distance);
+  std::printf(
+      "reproduction: velocity RMSE %.4f m/s, direction RMSE %.2f deg, path distance mean %.4f m "
+      "max %.4f m\n",
+      e.velocity_rmse, e.direction_rmse / kDeg, e.mean_path_distance, e.max_path_distance);
   EXPECT_EQ(e.all_reached, static_cast<int>(demos.size()));
   EXPECT_LT(e.mean_path_distance, 0.02);
   EXPECT_LT(e.max_path_distance, 0.06);
@@ -173,7 +182,7 @@ TEST(HittingDs, ShippedModelSatisfiesTheConstraintsAndReproducesTheDemonstration
 TEST(HittingDs, SineModulatorMeetsEquations26) {
   const double d0 = 0.4;
   for (double sd : {0.5, 0.9, 1.0, 1.6, 3.0}) {
-    EXPECT_DOUBLE_EQ(speed_modulator(Modulator::kSine, sd, d0, 0.0), sd);  // 2.6b
+    EXPECT_DOUBLE_EQ(speed_modulator(Modulator::kSine, sd, d0, 0.0), sd);    // 2.6b
     EXPECT_NEAR(speed_modulator(Modulator::kSine, sd, d0, d0), 1.0, 1e-15);  // 2.6c
     double prev = speed_modulator(Modulator::kSine, sd, d0, 0.0);
     const double h = 1e-4;
@@ -186,15 +195,19 @@ TEST(HittingDs, SineModulatorMeetsEquations26) {
       }
       prev = s;
     }
-    // 2.6d: smooth, including the joins at 0 (zero slope) and d0 (meets the constant 1 with zero slope).
+    // 2.6d: smooth, including the joins at 0 (zero slope) and d0 (meets the constant 1 with zero
+    // slope).
     const double e = 1e-6;
     const auto deriv = [&](double r) {
-      return (speed_modulator(Modulator::kSine, sd, d0, r + e) - speed_modulator(Modulator::kSine, sd, d0, r - e)) / (2 * e);
+      return (speed_modulator(Modulator::kSine, sd, d0, r + e) -
+              speed_modulator(Modulator::kSine, sd, d0, r - e)) /
+             (2 * e);
     };
     EXPECT_NEAR(deriv(d0), 0.0, 1e-4);
     EXPECT_NEAR((speed_modulator(Modulator::kSine, sd, d0, e) - sd) / e, 0.0, 1e-4);
     double max_jump = 0.0;
-    for (double r = 0.001; r < d0 + 0.05; r += 0.001) max_jump = std::max(max_jump, std::abs(deriv(r + 0.001) - deriv(r)));
+    for (double r = 0.001; r < d0 + 0.05; r += 0.001)
+      max_jump = std::max(max_jump, std::abs(deriv(r + 0.001) - deriv(r)));
     EXPECT_LT(max_jump, 0.05 * std::abs(1.0 - sd) + 1e-9);
     EXPECT_DOUBLE_EQ(speed_modulator(Modulator::kConstant, sd, d0, 0.2), sd);
   }
@@ -254,12 +267,15 @@ TEST(HittingDs, FiniteAndAttractingFarFromAllComponents) {
   HittingDsData data(m);
   data.set_command(m, {0.2, 1.5, Modulator::kConstant, m.x_star() + Vec3(-0.3, 0, 0.1)});
   for (double r : {10.0, 1e3, 1e6})
-    for (const Vec3& dir : {Vec3(1, 0, 0), Vec3(-1, 1, 0).normalized(), Vec3(0, 0, -1), Vec3(0.3, -0.4, 0.866)}) {
+    for (const Vec3& dir :
+         {Vec3(1, 0, 0), Vec3(-1, 1, 0).normalized(), Vec3(0, 0, -1), Vec3(0.3, -0.4, 0.866)}) {
       const Vec3 v = hitting_ds_velocity(m, data, m.x_star() + r * dir);
       ASSERT_TRUE(v.allFinite()) << r;
       EXPECT_LT(v.normalized().dot(dir), 0.0) << r << " " << dir.transpose();
       // Bounded speed: the strength factor is clamped, so nothing explodes far away.
-      EXPECT_LE(v.norm(), 1.5 / m.default_speed() * m.settings().max_strength_fraction * m.default_speed() + 1e-9);
+      EXPECT_LE(
+          v.norm(),
+          1.5 / m.default_speed() * m.settings().max_strength_fraction * m.default_speed() + 1e-9);
     }
 }
 
@@ -375,7 +391,8 @@ TEST(HittingModelFit, FitOnTheShippedDemonstrationsSatisfiesTheConstraints) {
 }
 
 TEST(HittingModelFit, FewAndNoisyDemonstrationsStillGiveAStableModelThatHitsAlongPsi0) {
-  for (const auto& [count, noise] : std::vector<std::pair<int, double>>{{1, 1.0}, {2, 10.0}, {5, 10.0}}) {
+  for (const auto& [count, noise] :
+       std::vector<std::pair<int, double>>{{1, 1.0}, {2, 10.0}, {5, 10.0}}) {
     DemoGeneratorConfig cfg;
     cfg.count = count;
     cfg.position_noise *= noise;
@@ -391,7 +408,8 @@ TEST(HittingModelFit, FewAndNoisyDemonstrationsStillGiveAStableModelThatHitsAlon
         HittingCommand c{theta, 1.0, Modulator::kSine, m.x_star() + rotation_about_z(theta) * s};
         const RolloutResult r = rollout(m, c);
         ASSERT_TRUE(r.reached) << count << " demos: " << r.stop_reason;
-        EXPECT_LT(angle_error(r.velocity, theta, m), 1.0 * kDeg) << count << " demos, noise x" << noise;
+        EXPECT_LT(angle_error(r.velocity, theta, m), 1.0 * kDeg)
+            << count << " demos, noise x" << noise;
         EXPECT_NEAR(r.velocity.norm(), 1.0, 0.01);
       }
   }
@@ -401,7 +419,8 @@ TEST(HittingDs, BadCommandsAreClearErrors) {
   const HittingModel& m = shipped_model();
   HittingDsData d(m);
   EXPECT_THROW(d.set_command(m, {0.0, -1.0, Modulator::kConstant, Vec3(-0.3, 0, 0.1)}), InputError);
-  EXPECT_THROW(d.set_command(m, {std::nan(""), 1.0, Modulator::kConstant, Vec3(-0.3, 0, 0.1)}), InputError);
+  EXPECT_THROW(d.set_command(m, {std::nan(""), 1.0, Modulator::kConstant, Vec3(-0.3, 0, 0.1)}),
+               InputError);
   EXPECT_THROW(d.set_command(m, {0.0, 1.0, Modulator::kSine, m.x_star()}), InputError);
   EXPECT_THROW(parse_modulator("cubic"), InputError);
 }

@@ -78,7 +78,9 @@ TEST_P(SedsGradient, AnalyticGradientMatchesFiniteDifferences) {
     Eigen::VectorXd pp = p, pm = p;
     pp[i] += h;
     pm[i] -= h;
-    const double fd = (seds_objective(pp, data, obj, floor, comps, nullptr) - seds_objective(pm, data, obj, floor, comps, nullptr)) / (2 * h);
+    const double fd = (seds_objective(pp, data, obj, floor, comps, nullptr) -
+                       seds_objective(pm, data, obj, floor, comps, nullptr)) /
+                      (2 * h);
     const double err = std::abs(fd - g[i]) / std::max(1.0, std::abs(fd));
     worst = std::max(worst, err);
     EXPECT_LT(err, 1e-5) << "parameter " << i << " analytic " << g[i] << " fd " << fd;
@@ -88,12 +90,14 @@ TEST_P(SedsGradient, AnalyticGradientMatchesFiniteDifferences) {
   RecordProperty("worst_relative_gradient_error", buf);
 }
 
-INSTANTIATE_TEST_SUITE_P(Objectives, SedsGradient, ::testing::Values(SedsObjective::kLikelihood, SedsObjective::kMse));
+INSTANTIATE_TEST_SUITE_P(Objectives, SedsGradient,
+                         ::testing::Values(SedsObjective::kLikelihood, SedsObjective::kMse));
 
 TEST(Seds, PackUnpackRoundTrip) {
   Rng rng(2);
   const auto comps = random_components(2, rng);
-  const auto back = unpack_seds(pack_seds(comps, SedsObjective::kLikelihood, 1e-6), SedsObjective::kLikelihood, 1e-6, comps);
+  const auto back = unpack_seds(pack_seds(comps, SedsObjective::kLikelihood, 1e-6),
+                                SedsObjective::kLikelihood, 1e-6, comps);
   ASSERT_EQ(back.size(), comps.size());
   double total = 0.0;
   for (const auto& c : comps) total += c.prior;
@@ -116,7 +120,8 @@ TEST(Seds, JointGmmFormIsEquivalent) {
   EXPECT_LT(bias, 1e-9);
   // GMR through mg::stats agrees with the direct SEDS formula.
   const stats::GmrConditioner gmr(gmm, {0, 1, 2}, {3, 4, 5});
-  for (const Eigen::Vector3d& y : {Eigen::Vector3d(-0.3, 0.05, 0.1), Eigen::Vector3d(0.01, -0.02, 0.0)}) {
+  for (const Eigen::Vector3d& y :
+       {Eigen::Vector3d(-0.3, 0.05, 0.1), Eigen::Vector3d(0.01, -0.02, 0.0)}) {
     const Eigen::VectorXd a = gmr.predict(Eigen::VectorXd(y)).mean;
     EXPECT_LT((a - seds_velocity(comps, y)).norm(), 1e-9);
   }
@@ -126,7 +131,8 @@ TEST(Seds, InitialGuessIsFeasible) {
   const SedsData data = demo_data(4, 9);
   SedsOptions opt;
   opt.gaussians = 3;
-  for (const auto& c : seds_initial_guess(data, opt)) EXPECT_LT(stability_eigenvalue(c.a), -opt.optimizer_margin);
+  for (const auto& c : seds_initial_guess(data, opt))
+    EXPECT_LT(stability_eigenvalue(c.a), -opt.optimizer_margin);
 }
 
 class SedsFit : public ::testing::TestWithParam<SedsObjective> {};
@@ -157,10 +163,12 @@ TEST_P(SedsFit, ConstraintsHoldAndObjectiveImproves) {
             pack_seds(again.components, opt.objective, opt.covariance_floor));
 }
 
-INSTANTIATE_TEST_SUITE_P(Objectives, SedsFit, ::testing::Values(SedsObjective::kLikelihood, SedsObjective::kMse));
+INSTANTIATE_TEST_SUITE_P(Objectives, SedsFit,
+                         ::testing::Values(SedsObjective::kLikelihood, SedsObjective::kMse));
 
 TEST(Seds, NoisyAndFewDemonstrationsStillGiveAStableModel) {
-  for (const auto& [count, noise] : std::vector<std::pair<int, double>>{{1, 1.0}, {2, 10.0}, {6, 20.0}}) {
+  for (const auto& [count, noise] :
+       std::vector<std::pair<int, double>>{{1, 1.0}, {2, 10.0}, {6, 20.0}}) {
     const SedsData data = demo_data(count, 100 + static_cast<std::uint64_t>(count), noise);
     SedsOptions opt;
     opt.gaussians = 2;
@@ -176,7 +184,8 @@ TEST(Seds, GmrStaysFiniteFarFromAllComponents) {
   const stats::Gmm gmm = seds_to_gmm(comps);
   const stats::GmrConditioner gmr(gmm, {0, 1, 2}, {3, 4, 5});
   for (const double s : {1.0, 1e2, 1e4, 1e6}) {
-    for (const Eigen::Vector3d& dir : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 2, 3), Eigen::Vector3d(0, 0, -1)}) {
+    for (const Eigen::Vector3d& dir :
+         {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 2, 3), Eigen::Vector3d(0, 0, -1)}) {
       const Eigen::Vector3d y = s * dir;
       EXPECT_TRUE(seds_velocity(comps, y).allFinite()) << s;
       EXPECT_TRUE(gmr.predict(Eigen::VectorXd(y)).mean.allFinite()) << s;
@@ -206,7 +215,8 @@ TEST(Seds, UnstableGmmIsRejectedByTheModel) {
   strength.priors = Eigen::VectorXd::Ones(1);
   strength.means = {Eigen::Vector4d(0, 0, 0, 1.5)};
   strength.covariances = {Eigen::Matrix4d::Identity() * 0.01};
-  EXPECT_THROW(HittingModel(seds_to_gmm(comps), strength, Eigen::Vector3d(0, 0, kBallRadius), Eigen::Vector3d::UnitX(), {}),
+  EXPECT_THROW(HittingModel(seds_to_gmm(comps), strength, Eigen::Vector3d(0, 0, kBallRadius),
+                            Eigen::Vector3d::UnitX(), {}),
                NumericalError);
 }
 

@@ -18,14 +18,17 @@ namespace {
 /// GPR on the shipped regular-hill data set: the nominal-simulator model.
 const learning::Model& nominal_model() {
   static const learning::Model m = [] {
-    const learning::Dataset d = learning::load_dataset(data_dir() / "datasets" / "regular-hill.csv");
+    const learning::Dataset d =
+        learning::load_dataset(data_dir() / "datasets" / "regular-hill.csv");
     learning::TrainOptions o;
     return learning::train(d, o);
   }();
   return m;
 }
 
-plant::Plant slow_grass() { return plant::parse_plant("field: {rolling_resistance_scale: 1.15}\n", "slow.yaml"); }
+plant::Plant slow_grass() {
+  return plant::parse_plant("field: {rolling_resistance_scale: 1.15}\n", "slow.yaml");
+}
 
 EvaluateOptions play(int n, std::uint64_t seed) {
   EvaluateOptions o;
@@ -53,7 +56,8 @@ TEST(Adaptation, ANominalModelFailsOnSlowerGrassAndAFewOwnPuttsRecoverIt) {
   EXPECT_GE(after.sunk, 19) << "before " << before.sunk;
   // The saved residual model plays the same after a file round trip.
   const learning::Model back = learning::model_from_json(learning::model_to_json(adapted.model));
-  EXPECT_EQ(evaluate_model(real, back, region, play(5, 9)).sunk, evaluate_model(real, adapted.model, region, play(5, 9)).sunk);
+  EXPECT_EQ(evaluate_model(real, back, region, play(5, 9)).sunk,
+            evaluate_model(real, adapted.model, region, play(5, 9)).sunk);
 }
 
 TEST(Adaptation, LearningWhilePlayingTheResidualWayBeatsAppending) {
@@ -99,7 +103,8 @@ TEST(Adaptation, TheStudyIsTheSameForAnyThreadCount) {
   ASSERT_EQ(one.size(), 2u);
   EXPECT_EQ(one[0].putts, (std::vector<int>{0, 2}));
   o.checkpoints = {0};
-  EXPECT_THROW(adaptation_study(config, prior, field::load_field("flat").situations, o), InputError);
+  EXPECT_THROW(adaptation_study(config, prior, field::load_field("flat").situations, o),
+               InputError);
 }
 
 }  // namespace

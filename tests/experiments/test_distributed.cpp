@@ -67,7 +67,8 @@ TEST(Wire, ExamplesSituationsAndLaunchHitsComeBack) {
   e.hole = {2.0, 0.1};
   e.found = true;
   e.angle = 0.05, e.speed = 1.3, e.margin_angle = 0.004, e.margin_speed = 0.03;
-  e.launch_angle = 0.051, e.launch_speed = 1.2, e.approach_speed = 0.4, e.full_putts = 17, e.ball_putts = 230;
+  e.launch_angle = 0.051, e.launch_speed = 1.2, e.approach_speed = 0.4, e.full_putts = 17,
+  e.ball_putts = 230;
   const teacher::Example eb = round_trip(e);
   EXPECT_EQ(eb.hole, e.hole);
   EXPECT_EQ(eb.found, true);
@@ -102,8 +103,10 @@ TEST(Wire, ExamplesSituationsAndLaunchHitsComeBack) {
   EXPECT_EQ(sb.oracle_ball_putts, 99);
 
   LaunchHit h;
-  h.angle_index = 2, h.hit_index = 5, h.seed = 0xfedcba9876543210ull, h.hit = false, h.failure = "not at rest";
-  h.club_angle = std::numeric_limits<double>::quiet_NaN(), h.rest_time = 1.25, h.ball_start = {0.001, -0.002};
+  h.angle_index = 2, h.hit_index = 5, h.seed = 0xfedcba9876543210ull, h.hit = false,
+  h.failure = "not at rest";
+  h.club_angle = std::numeric_limits<double>::quiet_NaN(), h.rest_time = 1.25,
+  h.ball_start = {0.001, -0.002};
   const LaunchHit hb = round_trip(h);
   EXPECT_EQ(hb.angle_index, 2);
   EXPECT_EQ(hb.hit_index, 5);
@@ -122,7 +125,8 @@ TEST(Wire, ATruncatedMessageIsAnError) {
   double v = 0;
   system::WireReader r(cut);
   EXPECT_THROW(r(s, v), Error);
-  const std::string length_only(8, '\xff');  // a length beyond the message (the reader keeps a view)
+  const std::string length_only(8,
+                                '\xff');  // a length beyond the message (the reader keeps a view)
   system::WireReader huge(length_only);
   EXPECT_THROW(huge(s), Error);
 }
@@ -134,15 +138,18 @@ TEST(Distributed, OneProcessIsParallelFor) {
   std::vector<int> calls(6, 0);
   const auto job = [&](std::vector<SweepCell>& out) {
     return [&](int i, system::SystemData& d) {
-      out[static_cast<std::size_t>(i)].outcome = system::ball_putt(sys, d, {2.0, 0.0}, 0.01 * i, 1.0 + 0.1 * i);
+      out[static_cast<std::size_t>(i)].outcome =
+          system::ball_putt(sys, d, {2.0, 0.0}, 0.01 * i, 1.0 + 0.1 * i);
     };
   };
   system::distributed_for(sys, a, 2, job(a), [&](int i) { ++calls[static_cast<std::size_t>(i)]; });
   system::parallel_for(sys, 6, 1, job(b));
   for (int i = 0; i < 6; ++i) {
     EXPECT_EQ(calls[static_cast<std::size_t>(i)], 1);
-    EXPECT_EQ(a[static_cast<std::size_t>(i)].outcome.rest_position, b[static_cast<std::size_t>(i)].outcome.rest_position);
-    EXPECT_EQ(a[static_cast<std::size_t>(i)].outcome.steps, b[static_cast<std::size_t>(i)].outcome.steps);
+    EXPECT_EQ(a[static_cast<std::size_t>(i)].outcome.rest_position,
+              b[static_cast<std::size_t>(i)].outcome.rest_position);
+    EXPECT_EQ(a[static_cast<std::size_t>(i)].outcome.steps,
+              b[static_cast<std::size_t>(i)].outcome.steps);
   }
 }
 

@@ -75,8 +75,8 @@ TEST(LaunchStudy, ZeroNoiseGivesZeroStdAndTheNoiseFreePutt) {
   // A seed without noise changes nothing.
   FullPuttOptions seeded;
   seeded.seed = 12345;
-  const FullPuttResult s =
-      full_system_putt(rig().world, rig().model, rig().data.arm.get(), {2.0, 0.0}, 0.0, 1.0, seeded);
+  const FullPuttResult s = full_system_putt(rig().world, rig().model, rig().data.arm.get(),
+                                            {2.0, 0.0}, 0.0, 1.0, seeded);
   EXPECT_TRUE(same_bits(s.launch.angle, plain.launch.angle));
   EXPECT_TRUE(same_bits(s.outcome.rest_position[0], plain.outcome.rest_position[0]));
   EXPECT_EQ(s.outcome.steps, plain.outcome.steps);

@@ -41,19 +41,23 @@ TEST(LearningWhilePlaying, OutcomesJoinTheModelAndItImproves) {
   EXPECT_GE(added, 20);
   EXPECT_GT(learned.learned.gps[0].size(), start.gps[0].size());
   // Measured: 5 of 30 without learning, 26 of 30 with it.
-  EXPECT_GE(learned.evaluation.sunk, fixed.sunk + 10) << fixed.sunk << " " << learned.evaluation.sunk;
+  EXPECT_GE(learned.evaluation.sunk, fixed.sunk + 10)
+      << fixed.sunk << " " << learned.evaluation.sunk;
   // The same inputs give the same bits.
   const LearningEvaluation again = evaluate_learning(hill(), start, region, o);
-  EXPECT_EQ(learning::model_to_json(again.learned).dump(), learning::model_to_json(learned.learned).dump());
+  EXPECT_EQ(learning::model_to_json(again.learned).dump(),
+            learning::model_to_json(learned.learned).dump());
   // The residual way keeps the start as its prior; appending needs a GPR's own data.
   ASSERT_TRUE(learned.learned.prior);
-  EXPECT_EQ(learning::model_to_json(*learned.learned.prior).dump(), learning::model_to_json(start).dump());
+  EXPECT_EQ(learning::model_to_json(*learned.learned.prior).dump(),
+            learning::model_to_json(start).dump());
   EvaluateOptions append = o;
   append.learn = LearnMode::kAppend;
   learning::Model gmr = start;
   gmr.method = learning::Method::kGmr;
   EXPECT_THROW(evaluate_learning(hill(), gmr, region, append), InputError);
-  EXPECT_THROW(evaluate_learning(hill(), learned.learned, region, append), InputError);  // a residual model
+  EXPECT_THROW(evaluate_learning(hill(), learned.learned, region, append),
+               InputError);  // a residual model
   const LearningEvaluation appended = evaluate_learning(hill(), start, region, append);
   EXPECT_GT(appended.learned.gps[0].size(), start.gps[0].size());
   EXPECT_FALSE(appended.learned.prior);
@@ -91,7 +95,8 @@ TEST(LearningCurves, SameBitsForOneAndTwoThreadsAndEveryLearnerRuns) {
   o.seeds = 2;
   o.situations = 3;
   o.teacher.strategy = teacher::Strategy::kMinSpeed;
-  for (const auto learner : {CurveLearner::kSelfTeach, CurveLearner::kTeacherGpr, CurveLearner::kCrkr}) {
+  for (const auto learner :
+       {CurveLearner::kSelfTeach, CurveLearner::kTeacherGpr, CurveLearner::kCrkr}) {
     o.threads = 1;
     const auto one = learning_curves(hill(), region, learner, o);
     o.threads = 2;
@@ -102,7 +107,8 @@ TEST(LearningCurves, SameBitsForOneAndTwoThreadsAndEveryLearnerRuns) {
   }
   o.checkpoints = {4, 2};
   EXPECT_THROW(learning_curves(hill(), region, CurveLearner::kCrkr, o), InputError);
-  const auto s = summarize({CurveRun{CurveLearner::kCrkr, 0, {5}, {1}, 10, 0}, CurveRun{CurveLearner::kCrkr, 1, {5}, {3}, 10, 0}});
+  const auto s = summarize({CurveRun{CurveLearner::kCrkr, 0, {5}, {1}, 10, 0},
+                            CurveRun{CurveLearner::kCrkr, 1, {5}, {3}, 10, 0}});
   EXPECT_DOUBLE_EQ(s.median[0], 0.2);
   EXPECT_DOUBLE_EQ(s.q10[0], 0.12);
 }

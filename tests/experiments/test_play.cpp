@@ -28,7 +28,9 @@ const system::System& flat() {
 
 std::string slurp(const fs::path& p) { return read_text_file(p); }
 
-fs::path temp(const std::string& name) { return fs::temp_directory_path() / ("mg_play_" + std::to_string(::getpid()) + "_" + name); }
+fs::path temp(const std::string& name) {
+  return fs::temp_directory_path() / ("mg_play_" + std::to_string(::getpid()) + "_" + name);
+}
 
 TEST(Sweep, CellsAreThePuttsAndDoNotDependOnTheThreadCount) {
   SweepOptions o;
@@ -63,7 +65,9 @@ TEST(Sweep, FullSystemCellsMatchArmPutts) {
   EXPECT_EQ(cells[0].launch_speed, r.launch.speed);
 }
 
-std::vector<std::array<double, 2>> holes() { return {{2.0, -0.1}, {2.0, 0.1}, {2.0, 0.3}, {2.5, 0.0}}; }
+std::vector<std::array<double, 2>> holes() {
+  return {{2.0, -0.1}, {2.0, 0.1}, {2.0, 0.3}, {2.5, 0.0}};
+}
 
 CollectOptions angle_only(double speed) {
   CollectOptions o;
@@ -136,7 +140,8 @@ TEST(Evaluate, WilsonIntervalMatchesTheClosedForm) {
 
 TEST(Evaluate, CollectTrainEvaluateOnASmallCase) {
   const auto data = temp("train.csv");
-  const field::Situations line = field::parse_situations_spec("line:2.0,-0.1:2.0,0.3:5", flat().field().situations);
+  const field::Situations line =
+      field::parse_situations_spec("line:2.0,-0.1:2.0,0.3:5", flat().field().situations);
   CollectOptions o = angle_only(1.55);
   collect(flat(), line.collection_points(), o, data);
   const CsvTable t = read_csv(data);
@@ -153,7 +158,8 @@ TEST(Evaluate, CollectTrainEvaluateOnASmallCase) {
   eo.threads = 2;
   const Evaluation e2 = evaluate_model(flat(), model, line, eo);
   EXPECT_EQ(evaluation_csv(e1, flat().field()), evaluation_csv(e2, flat().field()));
-  EXPECT_GE(e1.sunk, 5) << evaluation_csv(e1, flat().field());  // flat: interpolation between 5 examples
+  EXPECT_GE(e1.sunk, 5) << evaluation_csv(
+      e1, flat().field());  // flat: interpolation between 5 examples
   EXPECT_EQ(e1.oracle_found, 6);
   EXPECT_DOUBLE_EQ(e1.oracle_ceiling, 1.0);
   EXPECT_LE(e1.ci95[0], e1.success_ratio);

@@ -55,23 +55,31 @@ TEST(Field, BadInputNamesTheProblem) {
   expect_error_mentions("", "empty");
   expect_error_mentions("lane: [", "malformed YAML");
   expect_error_mentions(edited("rolling_resistance: 0.131", ""), "rolling_resistance");
-  expect_error_mentions(edited("rolling_resistance: 0.131", "rolling_resistance: .nan"), "rolling_resistance");
-  expect_error_mentions(edited("rolling_resistance: 0.131", "rolling_resistance: abc"), "rolling_resistance");
-  expect_error_mentions(edited("rolling_resistance: 0.131", "rolling_resistance: 3"), "rolling_resistance");
-  expect_error_mentions(edited("rolling_resistance: 0.131", "rolling_resistance: 0.1\nrolling_resistence: 0.1"), "rolling_resistence");
+  expect_error_mentions(edited("rolling_resistance: 0.131", "rolling_resistance: .nan"),
+                        "rolling_resistance");
+  expect_error_mentions(edited("rolling_resistance: 0.131", "rolling_resistance: abc"),
+                        "rolling_resistance");
+  expect_error_mentions(edited("rolling_resistance: 0.131", "rolling_resistance: 3"),
+                        "rolling_resistance");
+  expect_error_mentions(
+      edited("rolling_resistance: 0.131", "rolling_resistance: 0.1\nrolling_resistence: 0.1"),
+      "rolling_resistence");
   expect_error_mentions(edited("position: [2.0, 0.0]", "position: [3.5, 0.0]"), "hole");
   expect_error_mentions(edited("position: [2.0, 0.0]", "position: [2.0, 0.58]"), "hole");
   expect_error_mentions(edited("tee: [0.0, 0.0]", "tee: [0.0]"), "tee");
   expect_error_mentions(edited("format_version: 1", "format_version: 7"), "format_version");
   expect_error_mentions(edited("{type: plane}", "{type: volcano}"), "volcano");
-  expect_error_mentions(edited("{type: plane}", "{type: bump, center: [1, 0], height: 0.1, sigma: [0, 1]}"), "sigma");
+  expect_error_mentions(
+      edited("{type: plane}", "{type: bump, center: [1, 0], height: 0.1, sigma: [0, 1]}"), "sigma");
   expect_error_mentions(edited("{type: plane}", "{type: plane, slope_x: 3}"), "steeper");
-  expect_error_mentions(edited("{type: plane}", "{type: heightmap, file: missing.png}"), "missing.png");
+  expect_error_mentions(edited("{type: plane}", "{type: heightmap, file: missing.png}"),
+                        "missing.png");
   expect_error_mentions(edited("surface:\n  - {type: plane}", "surface: []"), "surface");
 }
 
 TEST(Field, FlattenTermDefaultsToTheTeeAndChecksItsRadii) {
-  const Field f = parse(edited("{type: plane}", "{type: plane, slope_x: 0.04}\n  - {type: flatten}"));
+  const Field f =
+      parse(edited("{type: plane}", "{type: plane, slope_x: 0.04}\n  - {type: flatten}"));
   ASSERT_EQ(f.surface.terms.size(), 2u);
   const auto& pad = std::get<FlattenTerm>(f.surface.terms[1]);
   EXPECT_EQ(pad.center, f.tee);
@@ -80,7 +88,8 @@ TEST(Field, FlattenTermDefaultsToTheTeeAndChecksItsRadii) {
   expect_error_mentions(edited("{type: plane}", "{type: plane}\n  - {type: flatten, radius: -1}"),
                         "surface[1].radius");
   expect_error_mentions(
-      edited("{type: plane}", "{type: plane}\n  - {type: flatten, radius: 0.1, blend_radius: 0.05}"),
+      edited("{type: plane}",
+             "{type: plane}\n  - {type: flatten, radius: 0.1, blend_radius: 0.05}"),
       "surface[1].blend_radius");
   expect_error_mentions(edited("{type: plane}", "{type: plane}\n  - {type: flatten, size: 1}"),
                         "surface[1].size");

@@ -40,8 +40,9 @@ void expect_error(const std::string& section, const std::string& needle) {
 }
 
 TEST(Situations, LineGivesEquallySpacedHolesEndsIncluded) {
-  const Field f = parse(with_situations(
-      "situations: {line: {from: [2.0, -0.2], to: [2.0, 0.4], count: 11}, outputs: [angle], speed: 1.5}\n"));
+  const Field f =
+      parse(with_situations("situations: {line: {from: [2.0, -0.2], to: [2.0, 0.4], count: 11}, "
+                            "outputs: [angle], speed: 1.5}\n"));
   const Situations& s = f.situations;
   EXPECT_TRUE(s.from_file);
   EXPECT_FALSE(s.learn_speed);
@@ -54,13 +55,15 @@ TEST(Situations, LineGivesEquallySpacedHolesEndsIncluded) {
 }
 
 TEST(Situations, GridIsXMajorAndSamplesStayInTheRectangle) {
-  const Field f = parse(with_situations("situations: {grid: {x: [1.8, 2.4], y: [0.0, 0.3], counts: [7, 4]}}\n"));
+  const Field f = parse(
+      with_situations("situations: {grid: {x: [1.8, 2.4], y: [0.0, 0.3], counts: [7, 4]}}\n"));
   const auto p = f.situations.collection_points();
   ASSERT_EQ(p.size(), 28u);
   EXPECT_DOUBLE_EQ(p[1][0], 1.8);
   EXPECT_DOUBLE_EQ(p[1][1], 0.1);
   EXPECT_DOUBLE_EQ(p[4][0], 1.9);
-  const auto a = f.situations.sample(200, 5), b = f.situations.sample(200, 5), c = f.situations.sample(30, 5);
+  const auto a = f.situations.sample(200, 5), b = f.situations.sample(200, 5),
+             c = f.situations.sample(30, 5);
   for (std::size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i], b[i]);  // seeded
     EXPECT_GE(a[i][0], 1.8);
@@ -72,11 +75,13 @@ TEST(Situations, GridIsXMajorAndSamplesStayInTheRectangle) {
 }
 
 TEST(Situations, ListAndDefault) {
-  const Field f = parse(with_situations("situations: {list: {points: [[1.5, 0.1], [2.0, -0.1]]}, strategy: min-angle}\n"));
+  const Field f = parse(with_situations(
+      "situations: {list: {points: [[1.5, 0.1], [2.0, -0.1]]}, strategy: min-angle}\n"));
   EXPECT_EQ(f.situations.collection_points().size(), 2u);
   EXPECT_EQ(f.situations.strategy, "min-angle");
   const auto s = f.situations.sample(10, 1);
-  for (const auto& h : s) EXPECT_TRUE(h == (std::array<double, 2>{1.5, 0.1}) || h == (std::array<double, 2>{2.0, -0.1}));
+  for (const auto& h : s)
+    EXPECT_TRUE(h == (std::array<double, 2>{1.5, 0.1}) || h == (std::array<double, 2>{2.0, -0.1}));
   const Field d = parse(with_situations(""));
   EXPECT_FALSE(d.situations.from_file);
   EXPECT_EQ(d.situations.collection_points().size(), 9u);
@@ -85,15 +90,21 @@ TEST(Situations, ListAndDefault) {
 
 TEST(Situations, FileErrorsNameTheKey) {
   expect_error("situations: {outputs: [angle, speed]}\n", "exactly one of line, grid, box, list");
-  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, grid: {x: [1, 2], y: [0, 1], counts: [2, 2]}}\n",
-               "exactly one");
+  expect_error(
+      "situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, grid: {x: [1, 2], y: [0, 1], "
+      "counts: [2, 2]}}\n",
+      "exactly one");
   expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 0}}\n", "count");
   expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 2.5}}\n", "whole number");
   expect_error("situations: {line: {from: [2, 0], to: [2, 0.9], count: 3}}\n", "outside the lane");
-  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, outputs: [angle]}\n", "speed");
-  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, speed: 1.5}\n", "only for outputs: [angle]");
-  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, strategy: fastest}\n", "min-speed or min-angle");
-  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, colour: red}\n", "unknown key");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, outputs: [angle]}\n",
+               "speed");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, speed: 1.5}\n",
+               "only for outputs: [angle]");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, strategy: fastest}\n",
+               "min-speed or min-angle");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, colour: red}\n",
+               "unknown key");
   expect_error("situations: {grid: {x: [2.4, 1.8], y: [0, 0.3], counts: [2, 2]}}\n", "[low, high]");
   expect_error("situations: {list: {points: [[0.0, 0.0]]}}\n", "on the tee");
   expect_error("situations: {list: {points: [[1.0, nan]]}}\n", "finite");
@@ -108,7 +119,8 @@ TEST(Situations, CommandLineSpecs) {
   EXPECT_EQ(grid.collection_points().size(), 6u);
   const Situations list = parse_situations_spec("list:1.5,0.1;2.0,0", f.situations);
   EXPECT_EQ(list.collection_points().size(), 2u);
-  for (const char* bad : {"", "circle:1,2", "line:1,2:3", "line:1,a:2,0:3", "grid:1,2:0,1:0,2", "list:1,2;3", "line:1,0:2,0:1e9"})
+  for (const char* bad : {"", "circle:1,2", "line:1,2:3", "line:1,a:2,0:3", "grid:1,2:0,1:0,2",
+                          "list:1,2;3", "line:1,0:2,0:1e9"})
     EXPECT_THROW(parse_situations_spec(bad, f.situations), InputError) << bad;
   Situations off = parse_situations_spec("line:2,0:2,3:3", f.situations);
   EXPECT_THROW(off.validate(f), InputError);
@@ -127,13 +139,14 @@ TEST(Situations, EveryShippedFieldHasItsThesisRegion) {
 }
 
 TEST(Situations, BoundsHoldEverySampleAndEveryCollectionPoint) {
-  for (const std::string spec : {"line:2.2,-0.3:1.8,0.4:5", "grid:1.5,2.5:-0.3,0.3:1,3", "box:1.9,2.1:0.1,0.2:1,1",
-                                 "list:2.0,0.1;1.7,-0.2;2.3,0.0"}) {
+  for (const std::string spec : {"line:2.2,-0.3:1.8,0.4:5", "grid:1.5,2.5:-0.3,0.3:1,3",
+                                 "box:1.9,2.1:0.1,0.2:1,1", "list:2.0,0.1;1.7,-0.2;2.3,0.0"}) {
     const Field f = parse(with_situations(""));
     const Situations r = region_from_spec(f, spec);
     const auto b = r.bounds();
     auto inside = [&](std::array<double, 2> p) {
-      return b[0] - 1e-12 <= p[0] && p[0] <= b[1] + 1e-12 && b[2] - 1e-12 <= p[1] && p[1] <= b[3] + 1e-12;
+      return b[0] - 1e-12 <= p[0] && p[0] <= b[1] + 1e-12 && b[2] - 1e-12 <= p[1] &&
+             p[1] <= b[3] + 1e-12;
     };
     for (const auto& p : r.sample(200, 3)) EXPECT_TRUE(inside(p)) << spec;
     for (const auto& p : r.collection_points()) EXPECT_TRUE(inside(p)) << spec;
@@ -143,7 +156,8 @@ TEST(Situations, BoundsHoldEverySampleAndEveryCollectionPoint) {
       const double lo = b[2 * axis], hi = b[2 * axis + 1];
       if (hi - lo < 1e-12) continue;
       double seen_lo = hi, seen_hi = lo;
-      for (const auto& p : s) seen_lo = std::min(seen_lo, p[axis]), seen_hi = std::max(seen_hi, p[axis]);
+      for (const auto& p : s)
+        seen_lo = std::min(seen_lo, p[axis]), seen_hi = std::max(seen_hi, p[axis]);
       EXPECT_LT(seen_lo - lo, 0.1 * (hi - lo)) << spec;
       EXPECT_LT(hi - seen_hi, 0.1 * (hi - lo)) << spec;
     }

@@ -16,7 +16,8 @@
 
 namespace mg::learning::testing {
 
-inline const std::filesystem::path kDataDir = std::filesystem::path(MINIGOLF_TEST_DATA_DIR) / "learning";
+inline const std::filesystem::path kDataDir =
+    std::filesystem::path(MINIGOLF_TEST_DATA_DIR) / "learning";
 
 // A fresh directory per test, removed afterwards.
 class ScratchDir {
@@ -38,7 +39,9 @@ class ScratchDir {
 // The flat-field law (thesis 3.2): aim straight at the hole, theta = atan2(xi_y, xi_x); speed
 // grows with the distance like sqrt(2 a d) for a constant rolling deceleration a.
 inline double flat_angle(double x, double y) { return std::atan2(y, x); }
-inline double flat_speed(double x, double y) { return std::sqrt(2.0 * 0.6 * std::hypot(x, y)) + 0.2; }
+inline double flat_speed(double x, double y) {
+  return std::sqrt(2.0 * 0.6 * std::hypot(x, y)) + 0.2;
+}
 
 inline Dataset flat_field(int n, std::uint64_t seed, double noise = 0.01) {
   mg::Rng rng(seed);

@@ -25,7 +25,8 @@ struct RunResult {
 RunResult run(const testing::ScratchDir& dir, const std::string& args) {
   const auto out_path = dir / "stdout.txt";
   const auto err_path = dir / "stderr.txt";
-  const std::string cmd = fmt::format("'{}' {} > '{}' 2> '{}'", MINIGOLF_BINARY, args, out_path.string(), err_path.string());
+  const std::string cmd = fmt::format("'{}' {} > '{}' 2> '{}'", MINIGOLF_BINARY, args,
+                                      out_path.string(), err_path.string());
   const int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -48,7 +49,8 @@ class LearningCli : public ::testing::Test {
 
 TEST_F(LearningCli, TrainGprReportsHyperparametersAndWritesAVersionedModel) {
   const std::string model = (dir_ / "gpr.json").string();
-  const RunResult r = run(dir_, fmt::format("train --method gpr '{}' -o '{}' --seed 3 --json", train_, model));
+  const RunResult r =
+      run(dir_, fmt::format("train --method gpr '{}' -o '{}' --seed 3 --json", train_, model));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   for (const char* out : {"angle", "speed"}) {
@@ -62,14 +64,17 @@ TEST_F(LearningCli, TrainGprReportsHyperparametersAndWritesAVersionedModel) {
   EXPECT_EQ(file["format_version"], 1);
   // Same seed, same file.
   const std::string model2 = (dir_ / "gpr2.json").string();
-  ASSERT_EQ(run(dir_, fmt::format("train --method gpr '{}' -o '{}' --seed 3", train_, model2)).exit_code, 0);
+  ASSERT_EQ(
+      run(dir_, fmt::format("train --method gpr '{}' -o '{}' --seed 3", train_, model2)).exit_code,
+      0);
   EXPECT_EQ(mg::read_text_file(model), mg::read_text_file(model2));
 }
 
 TEST_F(LearningCli, TrainGmrReportsGaussiansLikelihoodAndBic) {
   for (const char* method : {"gmr", "joint-gmr"}) {
     const std::string model = (dir_ / "m.json").string();
-    const RunResult r = run(dir_, fmt::format("train --method {} '{}' -o '{}' --gaussians 2 --json", method, train_, model));
+    const RunResult r = run(dir_, fmt::format("train --method {} '{}' -o '{}' --gaussians 2 --json",
+                                              method, train_, model));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["angle"]["n_gaussians"], 2) << method;
@@ -80,11 +85,15 @@ TEST_F(LearningCli, TrainGmrReportsGaussiansLikelihoodAndBic) {
 
 TEST_F(LearningCli, PredictPrintsQueryColumnsThenMeanAndStdPerOutput) {
   const std::string model = (dir_ / "m.json").string();
-  ASSERT_EQ(run(dir_, fmt::format("train --method joint-gmr '{}' -o '{}' --gaussians 2", train_, model)).exit_code, 0);
+  ASSERT_EQ(
+      run(dir_, fmt::format("train --method joint-gmr '{}' -o '{}' --gaussians 2", train_, model))
+          .exit_code,
+      0);
   const RunResult r = run(dir_, fmt::format("predict '{}' '{}'", model, val_));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const CsvTable t = parse_csv(r.out, "stdout");
-  const std::vector<std::string> header{"xi_x", "xi_y", "angle", "speed", "angle_mean", "angle_std", "speed_mean", "speed_std"};
+  const std::vector<std::string> header{"xi_x",       "xi_y",      "angle",      "speed",
+                                        "angle_mean", "angle_std", "speed_mean", "speed_std"};
   EXPECT_EQ(t.header, header);
   ASSERT_EQ(t.num_rows(), 60u);
   double mse = 0.0;
@@ -98,8 +107,11 @@ TEST_F(LearningCli, PredictPrintsQueryColumnsThenMeanAndStdPerOutput) {
 
 TEST_F(LearningCli, ValidatePrintsMsePerOutputAndTakesTrainOptions) {
   for (const char* method : {"gpr", "gmr", "joint-gmr"}) {
-    const RunResult r = run(dir_, fmt::format("validate --method {} --train '{}' --validate '{}' --gaussians 2 --restarts 3 --json",
-                                              method, train_, val_));
+    const RunResult r = run(
+        dir_,
+        fmt::format(
+            "validate --method {} --train '{}' --validate '{}' --gaussians 2 --restarts 3 --json",
+            method, train_, val_));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     for (const char* out : {"angle", "speed"}) {
@@ -107,7 +119,8 @@ TEST_F(LearningCli, ValidatePrintsMsePerOutputAndTakesTrainOptions) {
       EXPECT_TRUE(std::isfinite(j[out]["nlpd"].get<double>()));
     }
   }
-  const RunResult text = run(dir_, fmt::format("validate --train '{}' --validate '{}'", train_, val_));
+  const RunResult text =
+      run(dir_, fmt::format("validate --train '{}' --validate '{}'", train_, val_));
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_NE(text.out.find("mse"), std::string::npos);
   EXPECT_NE(text.out.find("angle"), std::string::npos);
@@ -115,9 +128,12 @@ TEST_F(LearningCli, ValidatePrintsMsePerOutputAndTakesTrainOptions) {
 
 TEST_F(LearningCli, OneDimensionalDatasetWithChosenColumns) {
   const std::string data = (dir_ / "one.csv").string();
-  mg::write_file_atomic(data, "d,noise,v\n0.5,1,1.0\n1.0,1,1.4\n1.5,1,1.7\n2.0,1,2.0\n2.5,1,2.2\n3.0,1,2.45\n");
+  mg::write_file_atomic(
+      data, "d,noise,v\n0.5,1,1.0\n1.0,1,1.4\n1.5,1,1.7\n2.0,1,2.0\n2.5,1,2.2\n3.0,1,2.45\n");
   const std::string model = (dir_ / "one.json").string();
-  ASSERT_EQ(run(dir_, fmt::format("train '{}' -o '{}' --inputs d --outputs v", data, model)).exit_code, 0);
+  ASSERT_EQ(
+      run(dir_, fmt::format("train '{}' -o '{}' --inputs d --outputs v", data, model)).exit_code,
+      0);
   const std::string q = (dir_ / "q.csv").string();
   mg::write_file_atomic(q, "d\n1.75\n");
   const RunResult r = run(dir_, fmt::format("predict '{}' '{}'", model, q));
@@ -135,7 +151,8 @@ TEST_F(LearningCli, BadInputExitsWithCodeTwoAndAOneLineReason) {
   };
   const std::string model = (dir_ / "m.json").string();
   const std::vector<Case> cases{
-      {fmt::format("train '{}/missing_column.csv' -o '{}'", data_dir, model), "missing column 'speed'"},
+      {fmt::format("train '{}/missing_column.csv' -o '{}'", data_dir, model),
+       "missing column 'speed'"},
       {fmt::format("train '{}/text_in_number.csv' -o '{}'", data_dir, model), "abc"},
       {fmt::format("train '{}/nan_value.csv' -o '{}'", data_dir, model), "finite"},
       {fmt::format("train '{}/empty.csv' -o '{}'", data_dir, model), "empty"},

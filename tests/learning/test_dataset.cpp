@@ -55,9 +55,11 @@ TEST(LearningDataset, HugeValuesAreAClearErrorNamingTheFile) {
     dataset_from_table(t, {"xi_x"}, {"angle"});
     ADD_FAILURE() << "expected an InputError";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("s.csv: row 1, column 'xi_x'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("s.csv: row 1, column 'xi_x'"), std::string::npos)
+        << e.what();
   }
-  EXPECT_NO_THROW(dataset_from_table(parse_csv("xi_x,angle\n1e90,0\n2,0.1\n", "ok.csv"), {"xi_x"}, {"angle"}));
+  EXPECT_NO_THROW(
+      dataset_from_table(parse_csv("xi_x,angle\n1e90,0\n2,0.1\n", "ok.csv"), {"xi_x"}, {"angle"}));
 }
 
 }  // namespace

@@ -29,7 +29,8 @@ TEST(LearningModel, FlatFieldLawIsRecoveredFromFewNoisyPoints) {
   // smooth law closely, GMR with 2 Gaussians is a coarser piecewise-linear approximation.
   const Dataset val = flat_field(300, 999, 0.0);
   Eigen::Vector2d variance;
-  for (int o = 0; o < 2; ++o) variance(o) = (val.outputs.col(o).array() - val.outputs.col(o).mean()).square().mean();
+  for (int o = 0; o < 2; ++o)
+    variance(o) = (val.outputs.col(o).array() - val.outputs.col(o).mean()).square().mean();
   for (int n : {5, 15, 30}) {
     const Dataset train_set = flat_field(n, 100 + n, 0.01);
     for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
@@ -37,7 +38,8 @@ TEST(LearningModel, FlatFieldLawIsRecoveredFromFewNoisyPoints) {
       const std::vector<Score> s = score(model, val);
       const double fraction = n == 5 ? 0.5 : m == Method::kGpr ? 0.02 : 0.25;
       for (int o = 0; o < 2; ++o) {
-        EXPECT_LT(s[o].mse, fraction * variance(o)) << method_name(m) << " n=" << n << " output " << o;
+        EXPECT_LT(s[o].mse, fraction * variance(o))
+            << method_name(m) << " n=" << n << " output " << o;
         EXPECT_TRUE(std::isfinite(s[o].nlpd));
       }
     }
@@ -126,7 +128,8 @@ TEST(LearningModel, ConstantInputColumnAndOneDimensionalData) {
     const Predictions a = predict(train(d, o), q);
     const Predictions b = predict(train(with_const, o), q3);
     ASSERT_TRUE(b.mean.allFinite() && b.std.allFinite()) << method_name(m);
-    EXPECT_LT((a.mean - b.mean).cwiseAbs().maxCoeff(), m == Method::kGpr ? 1e-6 : 0.02) << method_name(m);
+    EXPECT_LT((a.mean - b.mean).cwiseAbs().maxCoeff(), m == Method::kGpr ? 1e-6 : 0.02)
+        << method_name(m);
   }
   Dataset one;
   one.source = "1d";
@@ -148,7 +151,8 @@ TEST(LearningModel, ConstantOutputIsPredictedExactly) {
   for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
     const Predictions p = predict(train(d, options(m, 2)), q);
     ASSERT_TRUE(p.mean.allFinite() && p.std.allFinite()) << method_name(m);
-    for (Eigen::Index i = 0; i < q.rows(); ++i) EXPECT_NEAR(p.mean(i, 1), 1.25, 1e-9) << method_name(m);
+    for (Eigen::Index i = 0; i < q.rows(); ++i)
+      EXPECT_NEAR(p.mean(i, 1), 1.25, 1e-9) << method_name(m);
   }
 }
 
@@ -214,7 +218,8 @@ TEST(LearningModel, AResidualModelAddsItsCorrectionToItsPriorAndRoundTrips) {
 TEST(LearningModel, SameSeedSameModel) {
   const Dataset d = flat_field(20, 15);
   for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
-    EXPECT_EQ(model_to_json(train(d, options(m))).dump(), model_to_json(train(d, options(m))).dump());
+    EXPECT_EQ(model_to_json(train(d, options(m))).dump(),
+              model_to_json(train(d, options(m))).dump());
   }
 }
 
@@ -304,7 +309,8 @@ TEST(LearningModel, RegCovarIsAPriorThatShrinksWithTheData) {
   const Model chosen_few = train(few, options(Method::kGmr, 2));
   const Model fixed_few = train(few, fixed);
   EXPECT_EQ(chosen_few.reports[0].reg_covar, 1e-2);
-  EXPECT_EQ(model_to_json(chosen_few).at("gmms").dump(), model_to_json(fixed_few).at("gmms").dump());
+  EXPECT_EQ(model_to_json(chosen_few).at("gmms").dump(),
+            model_to_json(fixed_few).at("gmms").dump());
   // On 50 nearly noise-free rows of a curved 1-D law (bench/learning's "1d-clean" set), the
   // old fixed 1e-2 over-smooths: averaged over 10 training sets, the chosen value predicts a
   // validation set more closely (measured: about 1.7x lower speed MSE).
@@ -321,7 +327,8 @@ TEST(LearningModel, RegCovarIsAPriorThatShrinksWithTheData) {
     for (int i = 0; i < n; ++i) {
       const double x = ux(rng);
       d.inputs(i, 0) = x;
-      d.outputs.row(i) << 0.25 * std::tanh(x) + eps(rng), std::sqrt(1.2 * x + 0.25) + 0.05 * std::sin(3.0 * x) + eps(rng);
+      d.outputs.row(i) << 0.25 * std::tanh(x) + eps(rng),
+          std::sqrt(1.2 * x + 0.25) + 0.05 * std::sin(3.0 * x) + eps(rng);
     }
     return d;
   };

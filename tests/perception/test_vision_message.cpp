@@ -33,18 +33,25 @@ TEST(VisionMessage, RejectsEveryKindOfBadDatagram) {
   EXPECT_EQ(parse_vision_message("{", kLimits).error, VisionError::kMalformed);
   EXPECT_EQ(parse_vision_message("[1,2,3]", kLimits).error, VisionError::kMalformed);
   EXPECT_EQ(parse_vision_message(std::string(600, ' '), kLimits).error, VisionError::kTooLong);
-  EXPECT_EQ(parse_vision_message(R"({"format": "other/9", "seq": 1, "stamp": 0, )" + ok_tail, kLimits).error,
-            VisionError::kWrongFormat);
-  EXPECT_EQ(parse_vision_message(R"({"format": "minigolf-vision/1", "seq": -1, "stamp": 0, )" + ok_tail, kLimits).error,
+  EXPECT_EQ(
+      parse_vision_message(R"({"format": "other/9", "seq": 1, "stamp": 0, )" + ok_tail, kLimits)
+          .error,
+      VisionError::kWrongFormat);
+  EXPECT_EQ(parse_vision_message(
+                R"({"format": "minigolf-vision/1", "seq": -1, "stamp": 0, )" + ok_tail, kLimits)
+                .error,
             VisionError::kMalformed);
   EXPECT_EQ(parse_vision_message(head + R"("ball": [0, 0], "hole": [2, 0, 0]})", kLimits).error,
             VisionError::kMalformed);
-  EXPECT_EQ(parse_vision_message(head + R"("ball": [0, "a", 0], "hole": [2, 0, 0]})", kLimits).error,
-            VisionError::kMalformed);
-  EXPECT_EQ(parse_vision_message(head + R"("ball": [0, NaN, 0], "hole": [2, 0, 0]})", kLimits).error,
-            VisionError::kMalformed);
-  EXPECT_EQ(parse_vision_message(head + R"("ball": [0, 1e999, 0], "hole": [2, 0, 0]})", kLimits).error,
-            VisionError::kMalformed);
+  EXPECT_EQ(
+      parse_vision_message(head + R"("ball": [0, "a", 0], "hole": [2, 0, 0]})", kLimits).error,
+      VisionError::kMalformed);
+  EXPECT_EQ(
+      parse_vision_message(head + R"("ball": [0, NaN, 0], "hole": [2, 0, 0]})", kLimits).error,
+      VisionError::kMalformed);
+  EXPECT_EQ(
+      parse_vision_message(head + R"("ball": [0, 1e999, 0], "hole": [2, 0, 0]})", kLimits).error,
+      VisionError::kMalformed);
   EXPECT_EQ(parse_vision_message(head + R"("ball": [0, 0, 0], "hole": [20, 0, 0]})", kLimits).error,
             VisionError::kOutOfRange);
 }

@@ -46,7 +46,8 @@ arm:
 perception:
   noise: 0.002
   latency: 0.03
-)", "p.yaml");
+)",
+                              "p.yaml");
   EXPECT_DOUBLE_EQ(*p.field.rolling_resistance, 0.16);
   EXPECT_DOUBLE_EQ(*p.field.sliding_friction, 0.25);
   EXPECT_DOUBLE_EQ(p.field.extra_slope[1], -0.002);
@@ -62,16 +63,23 @@ perception:
 }
 
 TEST(Plant, BadFilesNameTheFileAndTheKey) {
-  EXPECT_NE(error_of("field: {grass: 1}\n").find("p.yaml: field.grass: unknown key"), std::string::npos);
+  EXPECT_NE(error_of("field: {grass: 1}\n").find("p.yaml: field.grass: unknown key"),
+            std::string::npos);
   EXPECT_NE(error_of("arms: {}\n").find("arms: unknown key"), std::string::npos);
   EXPECT_NE(error_of("format_version: 2\n").find("format_version"), std::string::npos);
-  EXPECT_NE(error_of("arm: {club_speed_scale: 7}\n").find("arm.club_speed_scale"), std::string::npos);
-  EXPECT_NE(error_of("arm: {club_speed_scale: nan}\n").find("arm.club_speed_scale"), std::string::npos);
-  EXPECT_NE(error_of("arm: {joint_friction: [1, 2]}\n").find("arm.joint_friction"), std::string::npos);
-  EXPECT_NE(error_of("arm: {joint_friction: [0,0,0,0,0,0,-1]}\n").find("arm.joint_friction[6]"), std::string::npos);
-  EXPECT_NE(error_of("field: {rolling_resistance: 0.1, rolling_resistance_scale: 1.1}\n").find("give one"),
+  EXPECT_NE(error_of("arm: {club_speed_scale: 7}\n").find("arm.club_speed_scale"),
             std::string::npos);
-  EXPECT_NE(error_of("perception: {latency: 1e300}\n").find("perception.latency"), std::string::npos);
+  EXPECT_NE(error_of("arm: {club_speed_scale: nan}\n").find("arm.club_speed_scale"),
+            std::string::npos);
+  EXPECT_NE(error_of("arm: {joint_friction: [1, 2]}\n").find("arm.joint_friction"),
+            std::string::npos);
+  EXPECT_NE(error_of("arm: {joint_friction: [0,0,0,0,0,0,-1]}\n").find("arm.joint_friction[6]"),
+            std::string::npos);
+  EXPECT_NE(error_of("field: {rolling_resistance: 0.1, rolling_resistance_scale: 1.1}\n")
+                .find("give one"),
+            std::string::npos);
+  EXPECT_NE(error_of("perception: {latency: 1e300}\n").find("perception.latency"),
+            std::string::npos);
   EXPECT_NE(error_of("field: [1, 2]\n").find("field"), std::string::npos);
   EXPECT_NE(error_of("{{{").find("malformed YAML"), std::string::npos);
   EXPECT_THROW(load_plant("/no/such/plant.yaml"), InputError);

@@ -224,7 +224,8 @@ TEST_F(WamIk, VelocityLimitsAdmitAPuttAtTwoAndAHalfMetresPerSecond) {
     Vector6 v = Vector6::Zero();
     v.head<3>() = 2.5 * psi;
     Vector7 qd;
-    EXPECT_EQ(velocity_ik(*arm_, r.q, jac, v, Vector7::Zero(), options, qd), RtStatus::kOk) << theta;
+    EXPECT_EQ(velocity_ik(*arm_, r.q, jac, v, Vector7::Zero(), options, qd), RtStatus::kOk)
+        << theta;
     EXPECT_LT((jac * qd - v).norm() / v.norm(), 0.01) << theta;
     EXPECT_LT(qd.cwiseAbs().cwiseQuotient(arm_->velocity_limit()).maxCoeff(), 0.9) << theta;
   }

@@ -46,7 +46,8 @@ TEST(Robust, SpeedNoiseAsksForAFasterArrivalAndLateralNoiseForASlowOne) {
   const double slow = robust_arrival_speed(flat(), region, lateral);
   EXPECT_GT(fast, 0.6);
   EXPECT_LT(slow, 0.45);
-  EXPECT_GT(sink_probability(flat(), 2.0, fast, speed), sink_probability(flat(), 2.0, 0.4, speed) + 0.05);
+  EXPECT_GT(sink_probability(flat(), 2.0, fast, speed),
+            sink_probability(flat(), 2.0, 0.4, speed) + 0.05);
 }
 
 }  // namespace

@@ -51,7 +51,8 @@ TEST(SelfTeach, SameSeedSameModelWithOneAndTwoThreads) {
   const auto two = self_teach(flat(), region, o);
   EXPECT_EQ(learning::model_to_json(one.model).dump(), learning::model_to_json(two.model).dump());
   ASSERT_EQ(one.putts.size(), two.putts.size());
-  for (std::size_t i = 0; i < one.putts.size(); ++i) EXPECT_EQ(one.putts[i].angle, two.putts[i].angle);
+  for (std::size_t i = 0; i < one.putts.size(); ++i)
+    EXPECT_EQ(one.putts[i].angle, two.putts[i].angle);
 }
 
 TEST(SelfTeach, RefusesABadBudgetAndAnUnplayableRegion) {

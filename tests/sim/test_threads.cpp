@@ -2,9 +2,9 @@
 // sharing a World), with exactly the bits of the same putts run serially.
 #include <array>
 #include <cmath>
-#include <utility>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -49,7 +49,8 @@ void expect_same(const std::vector<Bits>& a, const std::vector<Bits>& b, const s
     EXPECT_EQ(a[i].outcome.end, b[i].outcome.end) << what << " putt " << i;
     EXPECT_EQ(a[i].outcome.steps, b[i].outcome.steps) << what << " putt " << i;
     EXPECT_EQ(a[i].outcome.rest_position, b[i].outcome.rest_position) << what << " putt " << i;
-    EXPECT_EQ(a[i].outcome.closest_approach, b[i].outcome.closest_approach) << what << " putt " << i;
+    EXPECT_EQ(a[i].outcome.closest_approach, b[i].outcome.closest_approach)
+        << what << " putt " << i;
     EXPECT_EQ(a[i].qpos, b[i].qpos) << what << " putt " << i;
   }
 }
@@ -74,7 +75,8 @@ TEST(Threads, WorldsBuiltAndSteppedConcurrentlyGiveTheSerialBits) {
     });
   for (auto& t : threads) t.join();
   for (std::size_t i = 0; i < parallel.size(); ++i)
-    expect_same(serial[i / kPerField], parallel[i], std::string("own world, ") + kFields[i / kPerField]);
+    expect_same(serial[i / kPerField], parallel[i],
+                std::string("own world, ") + kFields[i / kPerField]);
 }
 
 TEST(Threads, OneWorldSharedByThreadsWithOwnData) {

@@ -27,7 +27,8 @@ Eigen::MatrixXd two_clusters(int n_each, mg::Rng& rng) {
 TEST(StatsGmm, LogLikelihoodMatchesTextbookDensity) {
   mg::Rng rng(1);
   const Gmm g = testing::random_gmm(3, 3, rng);
-  const Eigen::MatrixXd x = sample_gaussian(Eigen::VectorXd::Zero(3), Eigen::MatrixXd::Identity(3, 3) * 4.0, 20, rng);
+  const Eigen::MatrixXd x =
+      sample_gaussian(Eigen::VectorXd::Zero(3), Eigen::MatrixXd::Identity(3, 3) * 4.0, 20, rng);
   double expected = 0.0;
   for (int i = 0; i < x.rows(); ++i) expected += std::log(naive_gmm_pdf(g, x.row(i).transpose()));
   EXPECT_NEAR(gmm_log_likelihood(g, x), expected, 1e-9 * std::abs(expected));
@@ -57,10 +58,12 @@ TEST(StatsGmm, EmNeverDecreasesTheLikelihood) {
     ASSERT_GE(r.log_likelihood_trace.size(), 3u);
     for (std::size_t i = 1; i < r.log_likelihood_trace.size(); ++i) {
       const double prev = r.log_likelihood_trace[i - 1];
-      EXPECT_GE(r.log_likelihood_trace[i], prev - 1e-9 * std::abs(prev)) << "step " << i << " reg " << reg;
+      EXPECT_GE(r.log_likelihood_trace[i], prev - 1e-9 * std::abs(prev))
+          << "step " << i << " reg " << reg;
     }
     EXPECT_DOUBLE_EQ(r.log_likelihood, r.log_likelihood_trace.back());
-    EXPECT_NEAR(r.log_likelihood, gmm_log_likelihood(r.gmm, data), 1e-9 * std::abs(r.log_likelihood));
+    EXPECT_NEAR(r.log_likelihood, gmm_log_likelihood(r.gmm, data),
+                1e-9 * std::abs(r.log_likelihood));
   }
 }
 
@@ -90,7 +93,8 @@ TEST(StatsGmm, SameSeedSameBits) {
   EXPECT_EQ(ra.log_likelihood, rb.log_likelihood);
   for (int k = 0; k < 3; ++k) {
     EXPECT_EQ(ra.gmm.means[static_cast<std::size_t>(k)], rb.gmm.means[static_cast<std::size_t>(k)]);
-    EXPECT_EQ(ra.gmm.covariances[static_cast<std::size_t>(k)], rb.gmm.covariances[static_cast<std::size_t>(k)]);
+    EXPECT_EQ(ra.gmm.covariances[static_cast<std::size_t>(k)],
+              rb.gmm.covariances[static_cast<std::size_t>(k)]);
   }
 }
 
@@ -98,14 +102,16 @@ TEST(StatsGmm, BicPicksTheTrueNumberOfClusters) {
   mg::Rng rng(6);
   const Eigen::MatrixXd two = two_clusters(100, rng);
   EXPECT_EQ(fit_gmm_bic(two, 4, rng).gmm.num_components(), 2);
-  const Eigen::MatrixXd one = sample_gaussian(Eigen::Vector2d(1.0, 2.0), Eigen::Matrix2d::Identity(), 200, rng);
+  const Eigen::MatrixXd one =
+      sample_gaussian(Eigen::Vector2d(1.0, 2.0), Eigen::Matrix2d::Identity(), 200, rng);
   EXPECT_EQ(fit_gmm_bic(one, 4, rng).gmm.num_components(), 1);
   EXPECT_EQ(gmm_num_parameters(2, 3), 1 + 6 + 12);
 }
 
 TEST(StatsGmm, ConstantColumnAndDuplicatePointsStayFinite) {
   Eigen::MatrixXd data(6, 3);
-  data << 0, 1, 5, 0, 1, 5, 1, 2, 5, 1, 2, 5, 2, 3, 5, 2, 3, 5;  // third column constant, rows duplicated
+  data << 0, 1, 5, 0, 1, 5, 1, 2, 5, 1, 2, 5, 2, 3, 5, 2, 3,
+      5;  // third column constant, rows duplicated
   mg::Rng rng(7);
   const EmResult r = fit_gmm(data, 3, rng);
   EXPECT_TRUE(std::isfinite(r.log_likelihood));

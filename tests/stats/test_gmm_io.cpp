@@ -24,7 +24,8 @@ TEST(StatsGmmIo, RoundTripIsBitIdentical) {
     EXPECT_TRUE(same_bits(back.priors(k), g.priors(k)));
     for (int i = 0; i < 3; ++i) {
       EXPECT_TRUE(same_bits(back.means[k](i), g.means[k](i)));
-      for (int j = 0; j < 3; ++j) EXPECT_TRUE(same_bits(back.covariances[k](i, j), g.covariances[k](i, j)));
+      for (int j = 0; j < 3; ++j)
+        EXPECT_TRUE(same_bits(back.covariances[k](i, j), g.covariances[k](i, j)));
     }
   }
   EXPECT_EQ(gmm_to_json(back).dump(), text);

@@ -12,7 +12,8 @@ namespace {
 
 using testing::naive_gaussian_pdf;
 
-Eigen::MatrixXd pick(const Eigen::MatrixXd& m, const std::vector<int>& r, const std::vector<int>& c) {
+Eigen::MatrixXd pick(const Eigen::MatrixXd& m, const std::vector<int>& r,
+                     const std::vector<int>& c) {
   Eigen::MatrixXd out(r.size(), c.size());
   for (std::size_t i = 0; i < r.size(); ++i)
     for (std::size_t j = 0; j < c.size(); ++j) out(i, j) = m(r[i], c[j]);
@@ -25,9 +26,11 @@ Eigen::VectorXd pick(const Eigen::VectorXd& v, const std::vector<int>& r) {
 }
 
 // Conditioning through the precision matrix Lambda = Sigma^-1 (an independent route from the
-// Schur-complement form): Sigma_O|I = Lambda_OO^-1, mu_O|I = mu_O - Lambda_OO^-1 Lambda_OI (x - mu_I).
+// Schur-complement form): Sigma_O|I = Lambda_OO^-1, mu_O|I = mu_O - Lambda_OO^-1 Lambda_OI (x -
+// mu_I).
 GmrPrediction condition_by_precision(const Eigen::VectorXd& mean, const Eigen::MatrixXd& cov,
-                                     const std::vector<int>& in, const std::vector<int>& out, const Eigen::VectorXd& x) {
+                                     const std::vector<int>& in, const std::vector<int>& out,
+                                     const Eigen::VectorXd& x) {
   std::vector<int> keep = in;
   keep.insert(keep.end(), out.begin(), out.end());
   const Eigen::MatrixXd marginal = pick(cov, keep, keep);  // marginalise the unused dims first
@@ -49,7 +52,8 @@ TEST(StatsGmr, SingleGaussianMatchesPrecisionRoute) {
   const Eigen::Vector2d x(0.7, -1.2);
   const GmrPrediction p = gmr_predict(g, in, out, x);
   const GmrPrediction ref = condition_by_precision(g.means[0], g.covariances[0], in, out, x);
-  EXPECT_TRUE(p.mean.isApprox(ref.mean, 1e-10)) << p.mean.transpose() << " vs " << ref.mean.transpose();
+  EXPECT_TRUE(p.mean.isApprox(ref.mean, 1e-10))
+      << p.mean.transpose() << " vs " << ref.mean.transpose();
   EXPECT_TRUE(p.covariance.isApprox(ref.covariance, 1e-10));
 }
 
@@ -62,7 +66,8 @@ TEST(StatsGmr, MixtureMatchesBruteForce) {
   Eigen::VectorXd w(3);
   std::vector<GmrPrediction> parts;
   for (int k = 0; k < 3; ++k) {
-    w(k) = g.priors(k) * naive_gaussian_pdf(x, pick(g.means[k], in), pick(g.covariances[k], in, in));
+    w(k) =
+        g.priors(k) * naive_gaussian_pdf(x, pick(g.means[k], in), pick(g.covariances[k], in, in));
     parts.push_back(condition_by_precision(g.means[k], g.covariances[k], in, out, x));
   }
   w /= w.sum();
@@ -85,7 +90,8 @@ TEST(StatsGmr, OneDimensionalMixtureMatchesNumericalIntegration) {
   for (double xq : {-2.0, 0.0, 1.5}) {
     // p(y | x) proportional to the joint density on a fine grid over y.
     double z = 0.0, s1 = 0.0, s2 = 0.0;
-    const double lo = -15.0, hi = 15.0, dy = 5e-3;  // Riemann sums of smooth, decaying densities converge fast
+    const double lo = -15.0, hi = 15.0,
+                 dy = 5e-3;  // Riemann sums of smooth, decaying densities converge fast
     for (double y = lo; y <= hi; y += dy) {
       const double p = testing::naive_gmm_pdf(g, Eigen::Vector2d(xq, y));
       z += p;
@@ -107,8 +113,8 @@ TEST(StatsGmr, FarFromDataFollowsTheDominantComponentsTrend) {
   g.priors = Eigen::Vector2d(0.5, 0.5);
   g.means = {Eigen::Vector2d(-2.0, -2.0), Eigen::Vector2d(2.0, 4.0)};
   Eigen::Matrix2d c1, c2;
-  c1 << 1.0, 1.0, 1.0, 1.1;   // slope 1
-  c2 << 1.0, 3.0, 3.0, 9.1;   // slope 3
+  c1 << 1.0, 1.0, 1.0, 1.1;  // slope 1
+  c2 << 1.0, 3.0, 3.0, 9.1;  // slope 3
   g.covariances = {c1, c2};
   const GmrConditioner cond(g, {0}, {1});
   for (double xq : {50.0, 1e3, 1e6}) {

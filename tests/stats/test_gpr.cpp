@@ -11,7 +11,9 @@
 namespace mg::stats {
 namespace {
 
-double se(double a, double b, double l, double sf) { return sf * sf * std::exp(-0.5 * (a - b) * (a - b) / (l * l)); }
+double se(double a, double b, double l, double sf) {
+  return sf * sf * std::exp(-0.5 * (a - b) * (a - b) / (l * l));
+}
 
 GpHyperparameters hyper1(double l, double sf, double sn) {
   GpHyperparameters h;
@@ -26,7 +28,8 @@ TEST(StatsGpr, GradientMatchesFiniteDifferences) {
   for (int d : {1, 2, 3}) {
     const Eigen::MatrixXd x = Eigen::MatrixXd::Random(12, d) * 2.0;
     Eigen::VectorXd y(12);
-    for (int i = 0; i < 12; ++i) y(i) = std::sin(x.row(i).sum()) + 0.1 * Eigen::VectorXd::Random(1)(0);
+    for (int i = 0; i < 12; ++i)
+      y(i) = std::sin(x.row(i).sum()) + 0.1 * Eigen::VectorXd::Random(1)(0);
     for (int trial = 0; trial < 4; ++trial) {
       Eigen::VectorXd p = Eigen::VectorXd::Random(d + 2) * 0.8;
       p(d + 1) -= 1.5;  // moderate noise
@@ -38,7 +41,8 @@ TEST(StatsGpr, GradientMatchesFiniteDifferences) {
         Eigen::VectorXd pp = p, pm = p;
         pp(i) += h;
         pm(i) -= h;
-        const double fd = (gp_log_marginal_likelihood(x, y, pp) - gp_log_marginal_likelihood(x, y, pm)) / (2 * h);
+        const double fd =
+            (gp_log_marginal_likelihood(x, y, pp) - gp_log_marginal_likelihood(x, y, pm)) / (2 * h);
         EXPECT_NEAR(g(i), fd, 1e-5 * std::max(1.0, std::abs(fd))) << "d=" << d << " param " << i;
       }
     }
@@ -58,7 +62,8 @@ TEST(StatsGpr, OnePointPosteriorByHand) {
   EXPECT_NEAR(p.mean, 2.0, 1e-12);
   EXPECT_NEAR(p.latent_variance, 1.69 - k * k / (1.69 + 0.04), 1e-12);
   EXPECT_NEAR(p.noise_variance, 0.04, 1e-12);
-  EXPECT_NEAR(m.log_marginal_likelihood, -0.5 * std::log(1.69 + 0.04) - 0.5 * std::log(2 * std::numbers::pi), 1e-12);
+  EXPECT_NEAR(m.log_marginal_likelihood,
+              -0.5 * std::log(1.69 + 0.04) - 0.5 * std::log(2 * std::numbers::pi), 1e-12);
 }
 
 TEST(StatsGpr, TwoPointPosteriorByHand) {
@@ -78,8 +83,11 @@ TEST(StatsGpr, TwoPointPosteriorByHand) {
     EXPECT_NEAR(p.mean, mean, 1e-12) << xs;
     EXPECT_NEAR(p.latent_variance, var, 1e-12) << xs;
   }
-  const double quad = ((y1 - mu) * (a * (y1 - mu) - c * (y2 - mu)) + (y2 - mu) * (-c * (y1 - mu) + a * (y2 - mu))) / det;
-  EXPECT_NEAR(m.log_marginal_likelihood, -0.5 * quad - 0.5 * std::log(det) - std::log(2 * std::numbers::pi), 1e-12);
+  const double quad =
+      ((y1 - mu) * (a * (y1 - mu) - c * (y2 - mu)) + (y2 - mu) * (-c * (y1 - mu) + a * (y2 - mu))) /
+      det;
+  EXPECT_NEAR(m.log_marginal_likelihood,
+              -0.5 * quad - 0.5 * std::log(det) - std::log(2 * std::numbers::pi), 1e-12);
 }
 
 TEST(StatsGpr, ThreePointsTwoDimensionsByTextbookFormula) {
@@ -216,7 +224,8 @@ TEST(StatsGpr, RejectsBadInput) {
   x(1, 0) = std::nan("");
   mg::Rng rng(47);
   EXPECT_THROW(fit_gpr(x, Eigen::Vector3d(1, 2, 3), rng), InputError);
-  EXPECT_THROW(gp_predict(make_gp_model(Eigen::MatrixXd::Ones(2, 1), Eigen::Vector2d(1, 2), hyper1(1, 1, 0.1)),
+  EXPECT_THROW(gp_predict(make_gp_model(Eigen::MatrixXd::Ones(2, 1), Eigen::Vector2d(1, 2),
+                                        hyper1(1, 1, 0.1)),
                           Eigen::Vector2d(0, 0)),
                InputError);
 }

@@ -11,7 +11,8 @@
 
 namespace mg::stats::testing {
 
-inline Eigen::MatrixXd sample_gaussian(const Eigen::VectorXd& mean, const Eigen::MatrixXd& cov, int n, mg::Rng& rng) {
+inline Eigen::MatrixXd sample_gaussian(const Eigen::VectorXd& mean, const Eigen::MatrixXd& cov,
+                                       int n, mg::Rng& rng) {
   std::normal_distribution<double> normal(0.0, 1.0);
   const Eigen::MatrixXd l = Eigen::LLT<Eigen::MatrixXd>(cov).matrixL();
   Eigen::MatrixXd out(n, mean.size());
@@ -24,16 +25,20 @@ inline Eigen::MatrixXd sample_gaussian(const Eigen::VectorXd& mean, const Eigen:
 }
 
 // Density by the textbook formula with an explicit inverse and determinant (an independent route).
-inline double naive_gaussian_pdf(const Eigen::VectorXd& x, const Eigen::VectorXd& mean, const Eigen::MatrixXd& cov) {
+inline double naive_gaussian_pdf(const Eigen::VectorXd& x, const Eigen::VectorXd& mean,
+                                 const Eigen::MatrixXd& cov) {
   const Eigen::VectorXd d = x - mean;
   const double q = d.dot(cov.inverse() * d);
-  return std::exp(-0.5 * q) / std::sqrt(std::pow(2.0 * std::numbers::pi, static_cast<double>(x.size())) * cov.determinant());
+  return std::exp(-0.5 * q) /
+         std::sqrt(std::pow(2.0 * std::numbers::pi, static_cast<double>(x.size())) *
+                   cov.determinant());
 }
 
 inline double naive_gmm_pdf(const Gmm& g, const Eigen::VectorXd& x) {
   double p = 0.0;
   for (int k = 0; k < g.num_components(); ++k)
-    p += g.priors(k) * naive_gaussian_pdf(x, g.means[static_cast<std::size_t>(k)], g.covariances[static_cast<std::size_t>(k)]);
+    p += g.priors(k) * naive_gaussian_pdf(x, g.means[static_cast<std::size_t>(k)],
+                                          g.covariances[static_cast<std::size_t>(k)]);
   return p;
 }
 

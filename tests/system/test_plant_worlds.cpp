@@ -42,11 +42,13 @@ TEST(PlantWorlds, AnEmptyPlantChangesNoBit) {
 TEST(PlantWorlds, TheRobotsModelNeverSeesThePlant) {
   const auto config = load_config("", "flat");
   const System nominal(config);
-  const System real(config, plant_of(R"(field: {rolling_resistance_scale: 1.2, extra_slope: [0.004, 0.0]}
+  const System real(config,
+                    plant_of(R"(field: {rolling_resistance_scale: 1.2, extra_slope: [0.004, 0.0]}
 arm: {joint_friction: [1, 1, 0.5, 0.5, 0.05, 0.05, 0.01], club_restitution_scale: 0.9})"));
   EXPECT_EQ(real.field().rolling_resistance, nominal.field().rolling_resistance);
   EXPECT_EQ(real.field().surface.terms.size(), nominal.field().surface.terms.size());
-  EXPECT_DOUBLE_EQ(real.arm_world().field().rolling_resistance, 1.2 * nominal.field().rolling_resistance);
+  EXPECT_DOUBLE_EQ(real.arm_world().field().rolling_resistance,
+                   1.2 * nominal.field().rolling_resistance);
   EXPECT_EQ(real.module().arm().damping(), nominal.module().arm().damping());
   EXPECT_EQ(real.module().ball_radius(), nominal.module().ball_radius());
   EXPECT_NE(real.arm_world().mjcf().find("frictionloss"), std::string::npos);
@@ -69,13 +71,15 @@ TEST(PlantWorlds, SlowerGrassShortensTheRollAsPennersLawSays) {
   SystemData a(nominal), b(slow);
   const std::array<double, 2> far_hole{2.5, 0.5};  // off the path
   const double v0 = 1.5;
-  const auto on = ball_putt(nominal, a, far_hole, 0.0, v0), os = ball_putt(slow, b, far_hole, 0.0, v0);
+  const auto on = ball_putt(nominal, a, far_hole, 0.0, v0),
+             os = ball_putt(slow, b, far_hole, 0.0, v0);
   const auto& f = nominal.field();
   const double v1 = 5.0 / 7.0 * v0;
   const double slide = (v0 * v0 - v1 * v1) / (2.0 * f.sliding_friction * kG);
   const double roll_nominal = distance(on, f.tee) - slide, roll_slow = distance(os, f.tee) - slide;
   EXPECT_NEAR(roll_nominal / roll_slow, 1.25, 0.03);
-  EXPECT_NEAR(roll_slow, v1 * v1 / (2.0 * 5.0 / 7.0 * 1.25 * f.rolling_resistance * kG), 0.03 * roll_slow);
+  EXPECT_NEAR(roll_slow, v1 * v1 / (2.0 * 5.0 / 7.0 * 1.25 * f.rolling_resistance * kG),
+              0.03 * roll_slow);
 }
 
 TEST(PlantWorlds, AMissedTiltBendsTheRollDownhill) {
@@ -133,9 +137,12 @@ TEST(PlantWorlds, LateAndNoisyVisionStillHitsAndIsDeterministic) {
   EXPECT_NE(rv.outcome.rest_position, rn.outcome.rest_position);  // the club met the ball elsewhere
   // The same bits on any thread, with a fresh or a used scratch.
   std::vector<std::array<double, 2>> serial(3), parallel(3);
-  for (int i = 0; i < 3; ++i) serial[static_cast<std::size_t>(i)] = arm_putt(seeing, b, {2.0, 0.1 * i}, 0.01 * i, 1.6).outcome.rest_position;
+  for (int i = 0; i < 3; ++i)
+    serial[static_cast<std::size_t>(i)] =
+        arm_putt(seeing, b, {2.0, 0.1 * i}, 0.01 * i, 1.6).outcome.rest_position;
   parallel_for(seeing, 3, 2, [&](int i, SystemData& data) {
-    parallel[static_cast<std::size_t>(i)] = arm_putt(seeing, data, {2.0, 0.1 * i}, 0.01 * i, 1.6).outcome.rest_position;
+    parallel[static_cast<std::size_t>(i)] =
+        arm_putt(seeing, data, {2.0, 0.1 * i}, 0.01 * i, 1.6).outcome.rest_position;
   });
   EXPECT_EQ(serial, parallel);
 }

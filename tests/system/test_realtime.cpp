@@ -32,9 +32,10 @@ TEST(Realtime, HoldsFiveHundredHertzOnTheWallClock) {
   const std::string text = out.str();
   EXPECT_NE(text.find("Hitting -> Braking: the ball was hit"), std::string::npos) << text;
   EXPECT_NE(text.find("Braking -> Idle"), std::string::npos) << text;
-  std::printf("realtime: %llu ticks, %llu deadline misses, core update p99 %.0f us, max %.0f us; %s\n",
-              static_cast<unsigned long long>(ticks), static_cast<unsigned long long>(misses),
-              t.core_update_p99_us, t.core_update_max_us, session.scheduling().c_str());
+  std::printf(
+      "realtime: %llu ticks, %llu deadline misses, core update p99 %.0f us, max %.0f us; %s\n",
+      static_cast<unsigned long long>(ticks), static_cast<unsigned long long>(misses),
+      t.core_update_p99_us, t.core_update_max_us, session.scheduling().c_str());
 }
 
 TEST(Realtime, NormalModeEndToEndOverLoopback) {

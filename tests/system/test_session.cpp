@@ -12,12 +12,12 @@
 #include <thread>
 #include <vector>
 
-#include "system/session.hpp"
 #include "core/csv.hpp"
 #include "learning/dataset.hpp"
 #include "learning/learner.hpp"
 #include "perception/udp.hpp"
 #include "perception/vision_message.hpp"
+#include "system/session.hpp"
 
 namespace mg::system {
 using namespace mg::control;
@@ -44,9 +44,10 @@ std::vector<std::string> transitions(const std::string& text) {
 }
 
 std::filesystem::path temp_dir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("mg_session_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                    "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  const auto dir =
+      std::filesystem::temp_directory_path() /
+      ("mg_session_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+       ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::create_directories(dir);
   return dir;
 }
@@ -87,11 +88,24 @@ TEST(Session, BallLeavesAlongTheCommandedAngle) {
 TEST(Session, BadCommandsAreAnsweredAndChangeNothing) {
   std::ostringstream out;
   Session session(ModuleConfig{}, {}, out);
-  const std::vector<std::string> bad = {
-      "fly", "angle", "angle abc", "angle nan", "angle 5", "speed -1", "speed 9", "hole 99 9",
-      "hole 1", "load hitting /nonexistent/model.json", "load params /nonexistent.json",
-      "load nothing x", "record on /nonexistent-dir/x.csv", "record off", "auto", "wait -1",
-      "wait 1e9", std::string("\x01\x02\xff", 3)};
+  const std::vector<std::string> bad = {"fly",
+                                        "angle",
+                                        "angle abc",
+                                        "angle nan",
+                                        "angle 5",
+                                        "speed -1",
+                                        "speed 9",
+                                        "hole 99 9",
+                                        "hole 1",
+                                        "load hitting /nonexistent/model.json",
+                                        "load params /nonexistent.json",
+                                        "load nothing x",
+                                        "record on /nonexistent-dir/x.csv",
+                                        "record off",
+                                        "auto",
+                                        "wait -1",
+                                        "wait 1e9",
+                                        std::string("\x01\x02\xff", 3)};
   for (const auto& line : bad) EXPECT_TRUE(session.execute(line)) << line;
   EXPECT_EQ(session.state(), ModuleState::kIdle);
   EXPECT_EQ(session.time(), 0.0);
@@ -105,7 +119,8 @@ TEST(Session, BadCommandsAreAnsweredAndChangeNothing) {
 }
 
 TEST(Session, LockstepRunsAreBitIdentical) {
-  const std::string script = "angle -0.1\nspeed 0.9\nhit\nwait 2.5\nreset\nhole 1.2 0.3\nwait 0.2\nquit\n";
+  const std::string script =
+      "angle -0.1\nspeed 0.9\nhit\nwait 2.5\nreset\nhole 1.2 0.3\nwait 0.2\nquit\n";
   auto strip_timing = [](std::string s) {
     std::string kept;
     std::istringstream in(s);
@@ -153,7 +168,8 @@ TEST(Session, ObserverSeesEveryStepAndPacingKeepsTheBits) {
   Session session(ModuleConfig{}, options, out);
   const auto start = std::chrono::steady_clock::now();
   for (const char* l : lines) session.execute(l);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto ball = session.ball_position();
   EXPECT_EQ(ball[0], plain[0]);  // bit for bit: observing and pacing change nothing
   EXPECT_EQ(ball[1], plain[1]);
@@ -179,7 +195,8 @@ TEST(Session, InterruptEndsAPacedWaitAtItsNextTick) {
   });
   const auto start = std::chrono::steady_clock::now();
   session.execute("wait 10");
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   closer.join();
   EXPECT_LT(wall, 2.0);
   EXPECT_GT(session.time(), 0.1);
@@ -193,7 +210,8 @@ TEST(Session, RecorderWritesOneRowPerRobotUpdate) {
   const auto dir = temp_dir();
   const auto file = dir / "rec.csv";
   std::filesystem::remove(file);
-  const std::string out = run_script("record on " + file.string() + "\nrest\nwait 1\nrecord off\nquit\n");
+  const std::string out =
+      run_script("record on " + file.string() + "\nrest\nwait 1\nrecord off\nquit\n");
   ASSERT_TRUE(std::filesystem::exists(file)) << out;
   const CsvTable csv = read_csv(file);
   EXPECT_EQ(csv.header.front(), "t");
@@ -235,7 +253,7 @@ struct Sender {
     far.seq = ++seq;
     far.ball = {50.0, 0.0, 0.0};
     udp.send(perception::format_vision_message(far));  // out of range
-    udp.send(std::string(2000, 'x'));                   // too long
+    udp.send(std::string(2000, 'x'));                  // too long
   }
 };
 
@@ -330,7 +348,8 @@ TEST(Session, AutoTakesAngleAndSpeedFromTheParameterModel) {
   session.execute("wait 0.05");
   session.execute("load params " + (dir / "params.json").string());
   session.execute("auto");
-  EXPECT_NE(out.str().find("auto: xi (1.500, 0.200) -> angle 0.13"), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("auto: xi (1.500, 0.200) -> angle 0.13"), std::string::npos)
+      << out.str();
 }
 
 }  // namespace

@@ -22,7 +22,8 @@ TEST(System, ResolvesTheHittingModelFromAnyWorkingDirectory) {
 }
 
 TEST(System, BadConfigurationIsAnInputError) {
-  EXPECT_THROW(load_config(std::filesystem::temp_directory_path().string()), InputError);  // a directory
+  EXPECT_THROW(load_config(std::filesystem::temp_directory_path().string()),
+               InputError);  // a directory
   EXPECT_THROW(System(load_config("", "no-such-field")), InputError);
   EXPECT_THROW(System(load_config("", "flat", "/no/such/model.json")), Error);
   const System s(load_config("", "flat"));
@@ -34,15 +35,19 @@ TEST(System, BadConfigurationIsAnInputError) {
 TEST(System, PuttsOnManyThreadsGiveTheSerialBits) {
   const System s(load_config("", "flat"));
   const std::vector<double> angles{-0.05, 0.0, 0.03, 0.08};
-  std::vector<double> serial(angles.size()), parallel(angles.size()), ball(angles.size()), ball_par(angles.size());
+  std::vector<double> serial(angles.size()), parallel(angles.size()), ball(angles.size()),
+      ball_par(angles.size());
   SystemData d(s);
   for (std::size_t i = 0; i < angles.size(); ++i) {
     serial[i] = arm_putt(s, d, {2.0, 0.1}, angles[i], 1.5).outcome.rest_position[1];
     ball[i] = ball_putt(s, d, {2.0, 0.1}, angles[i], 2.4).rest_position[1];
   }
   parallel_for(s, static_cast<int>(angles.size()), 2, [&](int i, SystemData& data) {
-    parallel[static_cast<std::size_t>(i)] = arm_putt(s, data, {2.0, 0.1}, angles[static_cast<std::size_t>(i)], 1.5).outcome.rest_position[1];
-    ball_par[static_cast<std::size_t>(i)] = ball_putt(s, data, {2.0, 0.1}, angles[static_cast<std::size_t>(i)], 2.4).rest_position[1];
+    parallel[static_cast<std::size_t>(i)] =
+        arm_putt(s, data, {2.0, 0.1}, angles[static_cast<std::size_t>(i)], 1.5)
+            .outcome.rest_position[1];
+    ball_par[static_cast<std::size_t>(i)] =
+        ball_putt(s, data, {2.0, 0.1}, angles[static_cast<std::size_t>(i)], 2.4).rest_position[1];
   });
   EXPECT_EQ(serial, parallel);
   EXPECT_EQ(ball, ball_par);
@@ -50,9 +55,10 @@ TEST(System, PuttsOnManyThreadsGiveTheSerialBits) {
 
 TEST(System, AJobsExceptionReachesTheCaller) {
   const System s(load_config("", "flat"));
-  EXPECT_THROW(parallel_for(s, 8, 2, [](int i, SystemData&) {
-                 if (i == 5) throw InputError("job 5");
-               }),
+  EXPECT_THROW(parallel_for(s, 8, 2,
+                            [](int i, SystemData&) {
+                              if (i == 5) throw InputError("job 5");
+                            }),
                InputError);
 }
 

@@ -40,12 +40,14 @@ TEST(Teacher, StrategiesDifferAsNamedAndAreDeterministic) {
   const Example b = teach(flat(), data, {1.6, 0.2}, straight);
   ASSERT_TRUE(a.found);
   ASSERT_TRUE(b.found);
-  EXPECT_LT(a.speed, b.speed);                  // min-speed arrives slower
+  EXPECT_LT(a.speed, b.speed);  // min-speed arrives slower
   EXPECT_LT(a.approach_speed, b.approach_speed);
-  EXPECT_GT(a.ball_putts, 0);                   // proposed on the ball-only path first
+  EXPECT_GT(a.ball_putts, 0);  // proposed on the ball-only path first
   EXPECT_TRUE(system::arm_putt(flat(), data, a.hole, a.angle, a.speed).outcome.sunk);
-  EXPECT_TRUE(system::arm_putt(flat(), data, a.hole, a.angle, a.speed + a.margin_speed).outcome.sunk);
-  EXPECT_TRUE(system::arm_putt(flat(), data, a.hole, a.angle, a.speed - a.margin_speed).outcome.sunk);
+  EXPECT_TRUE(
+      system::arm_putt(flat(), data, a.hole, a.angle, a.speed + a.margin_speed).outcome.sunk);
+  EXPECT_TRUE(
+      system::arm_putt(flat(), data, a.hole, a.angle, a.speed - a.margin_speed).outcome.sunk);
   const Example again = teach(flat(), data, {1.6, 0.2}, slow);
   EXPECT_EQ(again.angle, a.angle);
   EXPECT_EQ(again.speed, a.speed);

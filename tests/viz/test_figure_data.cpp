@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "core/csv.hpp"
-#include "ds/hitting_ds.hpp"
 #include "core/error.hpp"
+#include "ds/hitting_ds.hpp"
 #include "system/system.hpp"
 #include "viz/figure_data.hpp"
 
@@ -14,7 +14,8 @@ namespace {
 
 struct Shipped {
   ds::HittingModel model = ds::read_hitting_model(system::load_config("").hitting_model);
-  std::vector<ds::Demonstration> demos = ds::read_demonstrations(system::resolve_data_path("data/demos/default.csv"));
+  std::vector<ds::Demonstration> demos =
+      ds::read_demonstrations(system::resolve_data_path("data/demos/default.csv"));
 };
 
 TEST(FigureData, StrengthFactorMeetsTheDefaultSpeedAtTheBall) {

@@ -11,7 +11,8 @@ namespace {
 
 TEST(Image, PngRoundTripKeepsEveryPixel) {
   Image a(37, 21);
-  for (std::size_t i = 0; i < a.rgb.size(); ++i) a.rgb[i] = static_cast<std::uint8_t>((i * 7919) % 256);
+  for (std::size_t i = 0; i < a.rgb.size(); ++i)
+    a.rgb[i] = static_cast<std::uint8_t>((i * 7919) % 256);
   const auto path = testing::temp_dir("png") / "a.png";
   write_png(path, a);
   const Image b = read_png(path);
@@ -41,7 +42,11 @@ TEST(Image, FilmstripPlacesFramesSideBySide) {
 
 TEST(Image, UnreadablePngIsAnIoError) {
   const auto path = testing::temp_dir("png") / "bad.png";
-  { std::FILE* f = std::fopen(path.c_str(), "w"); std::fputs("not a png", f); std::fclose(f); }
+  {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    std::fputs("not a png", f);
+    std::fclose(f);
+  }
   EXPECT_THROW(read_png(path), IoError);
   EXPECT_THROW(read_png(path.parent_path() / "missing.png"), IoError);
 }

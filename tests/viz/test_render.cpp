@@ -31,7 +31,8 @@ TEST(RecordHit, RecordingDoesNotChangeTheSimulation) {
   const HitRecording without = record_hit(flat(), straight_hit(), false);
   ASSERT_TRUE(with.outcome && without.outcome);
   EXPECT_EQ(std::memcmp(with.outcome->rest_position.data(), without.outcome->rest_position.data(),
-                        sizeof(double) * 2), 0);
+                        sizeof(double) * 2),
+            0);
   EXPECT_EQ(with.outcome->duration, without.outcome->duration);
   EXPECT_EQ(with.log, without.log);  // every transition and the outcome line, to the printed digit
   // All five stages, in time order, with the impact after the ball was last at rest.
@@ -69,7 +70,8 @@ TEST(RecordHit, BadRequestsAreInputErrors) {
 bool white_near(const Image& img, double u, double v, int radius) {
   for (int dy = -radius; dy <= radius; ++dy)
     for (int dx = -radius; dx <= radius; ++dx) {
-      const int x = static_cast<int>(std::lround(u)) + dx, y = static_cast<int>(std::lround(v)) + dy;
+      const int x = static_cast<int>(std::lround(u)) + dx,
+                y = static_cast<int>(std::lround(v)) + dy;
       if (x < 0 || y < 0 || x >= img.width || y >= img.height) continue;
       const auto* p = img.pixel(x, y);
       if (p[0] > 170 && p[1] > 170 && p[2] > 170) return true;
@@ -78,12 +80,14 @@ bool white_near(const Image& img, double u, double v, int radius) {
 }
 
 /// Centroid of the ball-white pixels within `radius` of (u, v); nullopt if there are none.
-std::optional<std::array<double, 2>> white_centroid(const Image& img, double u, double v, int radius) {
+std::optional<std::array<double, 2>> white_centroid(const Image& img, double u, double v,
+                                                    int radius) {
   double su = 0, sv = 0;
   int n = 0;
   for (int dy = -radius; dy <= radius; ++dy)
     for (int dx = -radius; dx <= radius; ++dx) {
-      const int x = static_cast<int>(std::lround(u)) + dx, y = static_cast<int>(std::lround(v)) + dy;
+      const int x = static_cast<int>(std::lround(u)) + dx,
+                y = static_cast<int>(std::lround(v)) + dy;
       if (x < 0 || y < 0 || x >= img.width || y >= img.height) continue;
       const auto* p = img.pixel(x, y);
       if (p[0] > 170 && p[1] > 170 && p[2] > 170) su += x + 0.5, sv += y + 0.5, ++n;
@@ -116,15 +120,16 @@ TEST(RenderDisplay, OffscreenImagesShowTheBallWhereTheSimulationHasIt) {
   ASSERT_TRUE(at);
   ASSERT_GT((*at)[0], 0);
   ASSERT_LT((*at)[0], 320);
-  EXPECT_TRUE(white_near(rest, (*at)[0], (*at)[1], 1)) << "ball at pixel " << (*at)[0] << "," << (*at)[1];
+  EXPECT_TRUE(white_near(rest, (*at)[0], (*at)[1], 1))
+      << "ball at pixel " << (*at)[0] << "," << (*at)[1];
   // The white blob around it is centred on the projection (the ball is about 6 pixels across).
   const auto blob = white_centroid(rest, (*at)[0], (*at)[1], 8);
   ASSERT_TRUE(blob);
   const double offset = std::hypot((*blob)[0] - (*at)[0], (*blob)[1] - (*at)[1]);
-  std::printf("ball: projected (%.2f, %.2f), white blob centroid (%.2f, %.2f): %.2f px apart\n", (*at)[0], (*at)[1],
-              (*blob)[0], (*blob)[1], offset);
-  EXPECT_LT(offset, 1.5)
-      << "blob " << (*blob)[0] << "," << (*blob)[1] << " projection " << (*at)[0] << "," << (*at)[1];
+  std::printf("ball: projected (%.2f, %.2f), white blob centroid (%.2f, %.2f): %.2f px apart\n",
+              (*at)[0], (*at)[1], (*blob)[0], (*blob)[1], offset);
+  EXPECT_LT(offset, 1.5) << "blob " << (*blob)[0] << "," << (*blob)[1] << " projection " << (*at)[0]
+                         << "," << (*at)[1];
   // 15 cm beside the ball there is lane, not ball: the check can fail.
   const auto off = r.project({ball[0], ball[1] - 0.15, ball[2]});
   ASSERT_TRUE(off);
@@ -170,8 +175,10 @@ TEST(RenderDisplay, RenderHitWritesAVideoAndAFilmstrip) {
     EXPECT_GT(std::filesystem::file_size(out.video), 1000u);
     // The MP4 holds every frame at the requested size (ffprobe, from the same Debian package,
     // decodes it).
-    const std::string probe = "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
-                              "stream=width,height,nb_read_frames -of csv=p=0 '" + out.video.string() + "' 2>&1";
+    const std::string probe =
+        "ffprobe -v error -select_streams v:0 -count_frames -show_entries "
+        "stream=width,height,nb_read_frames -of csv=p=0 '" +
+        out.video.string() + "' 2>&1";
     FILE* pipe = ::popen(probe.c_str(), "r");
     ASSERT_TRUE(pipe);
     char buf[256] = {};

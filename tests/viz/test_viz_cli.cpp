@@ -55,20 +55,23 @@ TEST(ViewCliDisplay, ViewerRunsAScriptedHitAndQuits) {
 TEST(ViewCliDisplay, RenderWritesTheVideoAndTheFilmstrip) {
   MG_NEED_DISPLAY();
   const auto dir = testing::temp_dir("render_cli");
-  const auto r = run_minigolf("render --field flat --angle 0.05 --speed 0.8 --size 160x120 --fps 10 -o " + q(dir / "hit"));
+  const auto r = run_minigolf(
+      "render --field flat --angle 0.05 --speed 0.8 --size 160x120 --fps 10 -o " + q(dir / "hit"));
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("filmstrip:"), std::string::npos) << r.out;
   const Image strip = read_png(dir / "hit-filmstrip.png");
   EXPECT_EQ(strip.height, 120);
   EXPECT_EQ(strip.width, 5 * 160 + 16);
-  EXPECT_TRUE(std::filesystem::exists(dir / "hit.mp4") || std::filesystem::exists(dir / "hit-frames"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "hit.mp4") ||
+              std::filesystem::exists(dir / "hit-frames"));
 }
 
 TEST(ViewCliDisplay, RenderWithoutFfmpegWritesPngFrames) {
   MG_NEED_DISPLAY();
   const auto dir = testing::temp_dir("render_noffmpeg");
-  const auto r = run_minigolf_env("env PATH=/nonexistent", "render --field flat --angle 0 --speed 0.8 --size 160x120 --fps 5 -o " +
-                                  q(dir / "hit"));
+  const auto r = run_minigolf_env(
+      "env PATH=/nonexistent",
+      "render --field flat --angle 0 --speed 0.8 --size 160x120 --fps 5 -o " + q(dir / "hit"));
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("ffmpeg not found"), std::string::npos) << r.out;
   EXPECT_FALSE(std::filesystem::exists(dir / "hit.mp4"));
@@ -84,7 +87,7 @@ TEST(ViewCliDisplay, RenderWithoutFfmpegWritesPngFrames) {
 TEST(ViewCli, WithoutAScreenViewAndRenderSayWhyInOneLine) {
   // Unset DISPLAY for the child (env -u): as on a machine without a screen and without Xvfb.
   for (const char* cmd : {"view --field flat --script /dev/null",
-                                "render --field flat --angle 0 --speed 1 -o /tmp/mg_viz_nodisplay"}) {
+                          "render --field flat --angle 0 --speed 1 -o /tmp/mg_viz_nodisplay"}) {
     const auto r = run_minigolf_env("env -u DISPLAY -u WAYLAND_DISPLAY", cmd);
     const std::string& out = r.out;
     EXPECT_EQ(r.exit_code, 1) << "crashed or wrong code: " << out;
@@ -95,11 +98,13 @@ TEST(ViewCli, WithoutAScreenViewAndRenderSayWhyInOneLine) {
 }
 
 TEST(ViewCli, RenderRejectsBadRequestsBeforeDrawing) {
-  for (const char* args : {"--field flat --angle 0 -o /tmp/x", "--field flat --angle 0 --speed 1 --size 321x240 -o /tmp/x",
-                                 "--field flat --angle 0 --speed 1 --camera nowhere -o /tmp/x",
-                                 "--field nowhere --angle 0 --speed 1 -o /tmp/x", "--field flat --angle 2 --speed 1 -o /tmp/x",
-                                  "--field flat --angle 0 --speed 1 --hole 9,9 -o /tmp/x",
-                                  "--field flat --angle 0 --speed 1 -o /nonexistent/folder/hit"}) {
+  for (const char* args : {"--field flat --angle 0 -o /tmp/x",
+                           "--field flat --angle 0 --speed 1 --size 321x240 -o /tmp/x",
+                           "--field flat --angle 0 --speed 1 --camera nowhere -o /tmp/x",
+                           "--field nowhere --angle 0 --speed 1 -o /tmp/x",
+                           "--field flat --angle 2 --speed 1 -o /tmp/x",
+                           "--field flat --angle 0 --speed 1 --hole 9,9 -o /tmp/x",
+                           "--field flat --angle 0 --speed 1 -o /nonexistent/folder/hit"}) {
     const auto r = run_minigolf("render " + std::string(args));
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << r.err;
@@ -114,7 +119,9 @@ TEST(ViewCli, RenderRejectsBadRequestsBeforeDrawing) {
 }
 
 /// A shipped data file, by absolute path (the tests run in the build folder).
-std::string shipped(const std::string& rel) { return q(std::string(MINIGOLF_TEST_DATA_DIR) + "/../../data/" + rel); }
+std::string shipped(const std::string& rel) {
+  return q(std::string(MINIGOLF_TEST_DATA_DIR) + "/../../data/" + rel);
+}
 
 bool nonempty_png(const std::filesystem::path& p) {
   const Image img = read_png(p);
@@ -126,7 +133,8 @@ TEST(PlotCli, DsAndStrengthFiguresOfTheShippedModel) {
   auto r = run_minigolf("plot ds -o " + q(dir / "ds.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(nonempty_png(dir / "ds.png"));
-  r = run_minigolf("plot ds --plane xy --data-dir " + q(dir / "data") + " -o " + q(dir / "ds_xy.png"));
+  r = run_minigolf("plot ds --plane xy --data-dir " + q(dir / "data") + " -o " +
+                   q(dir / "ds_xy.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(dir / "data" / "ds_gmm.csv"));
   r = run_minigolf("plot strength -o " + q(dir / "strength.png"));
@@ -136,12 +144,15 @@ TEST(PlotCli, DsAndStrengthFiguresOfTheShippedModel) {
 
 TEST(PlotCli, FieldAndModelFigures) {
   const auto dir = testing::temp_dir("plot_field");
-  auto r = run_minigolf("plot field --field regular-hill --shot 0.05,1.2 --shot -0.05,1.4 -o " + q(dir / "field.png"));
+  auto r = run_minigolf("plot field --field regular-hill --shot 0.05,1.2 --shot -0.05,1.4 -o " +
+                        q(dir / "field.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(nonempty_png(dir / "field.png"));
-  r = run_minigolf("train " + shipped("datasets/flat.csv") + " --inputs xi_y --outputs angle --restarts 2 -o " + q(dir / "m.json"));
+  r = run_minigolf("train " + shipped("datasets/flat.csv") +
+                   " --inputs xi_y --outputs angle --restarts 2 -o " + q(dir / "m.json"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run_minigolf("plot model --model " + q(dir / "m.json") + " --data " + shipped("datasets/flat.csv") + " --validation " +
+  r = run_minigolf("plot model --model " + q(dir / "m.json") + " --data " +
+                   shipped("datasets/flat.csv") + " --validation " +
                    shipped("datasets/flat-validation.csv") + " -o " + q(dir / "model.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(nonempty_png(dir / "model.png"));
@@ -153,15 +164,20 @@ TEST(PlotCli, MissingOrBrokenInputsAreOneLineExitTwo) {
   write(dir / "broken.json", "{\"priors\": [");
   const std::string data = std::string(MINIGOLF_TEST_DATA_DIR) + "/learning/";
   for (const std::string& args :
-       {"ds --demos /nonexistent.csv -o " + q(dir / "a.png"), "ds --demos " + q(dir / "broken.csv") + " -o " + q(dir / "a.png"),
+       {"ds --demos /nonexistent.csv -o " + q(dir / "a.png"),
+        "ds --demos " + q(dir / "broken.csv") + " -o " + q(dir / "a.png"),
         "ds --hitting-model " + q(dir / "broken.json") + " -o " + q(dir / "a.png"),
         "ds --plane yz -o " + q(dir / "a.png"), "strength --speeds 1,abc -o " + q(dir / "a.png"),
         "strength --hitting-model /nonexistent.json -o " + q(dir / "a.png"),
-        "field --field nowhere -o " + q(dir / "a.png"), "field --field flat --shot 0,nan -o " + q(dir / "a.png"),
+        "field --field nowhere -o " + q(dir / "a.png"),
+        "field --field flat --shot 0,nan -o " + q(dir / "a.png"),
         "field --field flat --hole 99,0 -o " + q(dir / "a.png"),
-        "model --model /nonexistent.json --data " + shipped("datasets/flat.csv") + " -o " + q(dir / "a.png"),
-        "model --model " + q(data + "truncated_model.json") + " --data " + shipped("datasets/flat.csv") + " -o " + q(dir / "a.png"),
-        "model --model " + q(dir / "broken.json") + " --data " + shipped("datasets/flat.csv") + " -o " + q(dir / "a.png")}) {
+        "model --model /nonexistent.json --data " + shipped("datasets/flat.csv") + " -o " +
+            q(dir / "a.png"),
+        "model --model " + q(data + "truncated_model.json") + " --data " +
+            shipped("datasets/flat.csv") + " -o " + q(dir / "a.png"),
+        "model --model " + q(dir / "broken.json") + " --data " + shipped("datasets/flat.csv") +
+            " -o " + q(dir / "a.png")}) {
     const auto r = run_minigolf("plot " + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
     EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;

@@ -13,8 +13,9 @@ inline bool have_display() {
   return d && *d;
 }
 
-#define MG_NEED_DISPLAY() \
-  if (!::mg::viz::testing::have_display()) GTEST_SKIP() << "no DISPLAY: run under xvfb-run -a (ctest: viz_under_xvfb)"
+#define MG_NEED_DISPLAY()                  \
+  if (!::mg::viz::testing::have_display()) \
+  GTEST_SKIP() << "no DISPLAY: run under xvfb-run -a (ctest: viz_under_xvfb)"
 
 inline std::filesystem::path temp_dir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() /
