@@ -27,7 +27,7 @@ using namespace mg;
 
 struct Shot {
   const char* field;
-  double angle;  ///< [rad] the shipped hole's sinking putt (README)
+  double angle;  ///< [rad] the shipped hole's sinking putt (docs/control.md)
   double speed;  ///< [m/s] club speed
 };
 constexpr std::array<Shot, 4> kShots{{{"flat", 0.01, 1.6},

@@ -1,5 +1,5 @@
 // Measures the full system on the flat field over a grid of hitting angles and club speeds and
-// prints Markdown tables (README "The minigolf module: measured"): club speed vs command, launch
+// prints Markdown tables (docs/control.md, "Measured"): club speed vs command, launch
 // speed / club speed, launch-angle bias at theta = 0 per speed, launch error after that bias,
 // torque demand, joint speeds, time to the rest pose and to contact.
 //

@@ -1,5 +1,5 @@
 // Measures the ball physics against the closed forms of PHYSICS.md and prints Markdown tables
-// (the numbers in the README's "Physics" section come from this program).
+// (the numbers of docs/physics.md come from this program).
 //
 // Run: ./build/bench/sim/physics_report
 #include <cmath>

@@ -37,7 +37,7 @@ void add_console_command(CLI::App& app) {
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand(
       "console", "Run the arm and the minigolf module interactively (commands on standard input)");
-  cmd->add_option("--config", o->config, "Module config YAML (see README: module config)")
+  cmd->add_option("--config", o->config, "Module config YAML (docs/control.md: Config)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--field", o->field, "Shipped field name or path (overrides the config)");
   cmd->add_option("--mode", o->mode, "simulator | normal (overrides the config)");

@@ -1,7 +1,8 @@
 // study launch-error [--field flat] [--angles-deg -10,0,10] [--hits 10] [--speed 1.0]
 //   [--torque-noise 0.01] [--placement-noise 0.001] [--seed 1] [--out DIR] [--json] [--plot]
-// The launch-error study of thesis 6.1 (control/launch_study.hpp): progress on stderr, a Markdown
-// table (or --json) on stdout, DIR/launch_error.{csv,md} and with --plot DIR/launch_error.png.
+// The launch-error study of thesis 6.1 (experiments/launch_study.hpp): progress on stderr, a
+// Markdown table (or --json) on stdout, DIR/launch_error.{csv,md} and with --plot
+// DIR/launch_error.png.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>

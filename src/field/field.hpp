@@ -1,7 +1,7 @@
 #pragma once
 /// A minigolf lane as data: bounds, surface, tee, hole, ball, resistances, borders.
 ///
-/// Fields are YAML files (format in README "Field files"). A field named without a path
+/// Fields are YAML files (format: docs/fields.md). A field named without a path
 /// (`flat`) is the shipped one in `data/fields/`; anything with a '/' or a `.yaml`/`.yml`
 /// suffix is a user's file. A `Field` is validated once, on load.
 #include <array>

@@ -11,11 +11,11 @@
 /// by the first construction, to a pure function of (model, data).
 ///
 /// Ground contact: MuJoCo 2.2.2's heightfield contacts make a rolling ball drift sideways and
-/// lose speed (measured: 2-9 cm per metre, 5-17 % speed; README "Physics"), so the heightfield
+/// lose speed (measured: 2-9 cm per metre, 5-17 % speed; docs/physics.md), so the heightfield
 /// is drawn but does not collide. The ball touches an exact, analytic surface instead: a mocap
 /// box whose top face is moved every step onto the tangent plane at the ball's foot point.
 ///
-/// Ball physics (see README "Physics"): condim-3 contacts for sliding friction, plus an explicit
+/// Ball physics (see docs/physics.md): condim-3 contacts for sliding friction, plus an explicit
 /// rolling-resistance torque of magnitude rho r N opposing the ball's rolling (Penner's model),
 /// applied before every step. The ground under the hole opening is removed by a contact filter
 /// (a heightfield cannot have a hole), so the ball falls into a geometric cup and lips out or
@@ -33,7 +33,7 @@ namespace mg::sim {
 /// What the ball rolls on.
 enum class GroundContact {
   kTangentPlane,  ///< exact analytic surface through a moving tangent plane (default)
-  kHeightfield,   ///< MuJoCo's heightfield contacts (kept for comparison; see README)
+  kHeightfield,   ///< MuJoCo's heightfield contacts (kept for comparison; docs/physics.md)
 };
 
 /// How the cup (floor and wall segments) is made of mocap bodies.
@@ -63,7 +63,7 @@ struct WorldOptions {
   double rolling_slip_limit = 0.05;
   /// solref time constant of ball-ground contacts [s]. Stiffer contacts make a sliding ball hop
   /// (measured: 11 mm at 2 m/s with 0.002 s, under 0.5 mm with 0.02 s); softer ones sink it
-  /// in. See README "Physics".
+  /// in. See docs/physics.md.
   double ground_time_constant = 0.02;
   /// MJCF inserted into the world's `<worldbody>` and `<actuator>` (the arm, from src/robot; sim
   /// does not depend on robot). Angles in radians. Geoms that should hit the ball use contype 4.

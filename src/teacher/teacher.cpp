@@ -22,7 +22,7 @@ TeacherOptions options_for(const field::Situations& region, const std::string& s
 namespace {
 
 constexpr double kGravity = 9.81;
-constexpr double kLaunchBias = -0.006;  ///< [rad] measured launch angle - theta (README, Module)
+constexpr double kLaunchBias = -0.006;  ///< [rad] measured launch angle - theta (docs/control.md)
 constexpr double kLaunchRatio = 1.6;    ///< measured launch speed / club speed (1.54-1.67)
 
 /// One putt, seen the way the teacher uses it.
@@ -340,8 +340,9 @@ void TeacherOptions::validate() const {
 
 double arrival_speed(const field::Field& field, Strategy strategy) {
   if (strategy == Strategy::kMinSpeed) return kMinSpeedArrival;
-  // A shallow cup holds only slower balls (README "Capture at the hole": a 15 mm cup sinks about
-  // 0.7x the speeds of a 60 mm one at the same offset), so the fast arrival scales with depth.
+  // A shallow cup holds only slower balls (docs/physics.md, "Capture at the hole": a 15 mm cup
+  // sinks about 0.7x the speeds of a 60 mm one at the same offset), so the fast arrival scales with
+  // depth.
   const double depth_factor = std::clamp(field.hole.depth / 0.06, 0.5, 1.0);
   return std::max(kMinSpeedArrival, kMinAngleArrival * depth_factor);
 }

@@ -55,7 +55,7 @@ TEST(Hole, CaptureWindowShrinksWithOffsetAndTracksTheFreeFallSpeed) {
     RecordProperty("capture_speed_b" + std::to_string(int(b * 1000)), std::to_string(measured));
     EXPECT_LT(measured, previous) << "offset " << b;
     // The geometric cup with a rolling ball captures somewhat above the free-fall bound
-    // (README "Physics" lists the measured ratios); it must stay within [0.8, 1.7] of it.
+    // (docs/physics.md lists the measured ratios); it must stay within [0.8, 1.7] of it.
     EXPECT_GT(measured, 0.8 * formula) << "offset " << b;
     EXPECT_LT(measured, 1.7 * formula) << "offset " << b;
     previous = measured;
