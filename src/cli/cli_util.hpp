@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/plot.hpp"
 #include "plant/plant.hpp"
 
 namespace mg::cli {
@@ -35,10 +36,7 @@ std::array<double, N> parse_vector(const std::string& what, const std::string& t
 /// Parses "a,b,c" into names (no empty entries); throws `InputError` naming `what`.
 std::vector<std::string> parse_names(const std::string& what, const std::string& text);
 
-/// Runs scripts/plots/plot.py with `args` (already shell-quoted) to draw `png`. Checks the
-/// target first (`check_output_file`); plot.py's one-line error becomes ours (its exit 2, an
-/// input problem, stays exit 2).
-void run_plot_script(const std::string& args, const std::string& png);
+using mg::run_plot_script;  ///< core/plot.hpp
 
 /// The plant of `--plant PATH` (empty path: none, the identity). Throws InputError/IoError.
 plant::Plant load_plant_arg(const std::string& path);

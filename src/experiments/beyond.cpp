@@ -50,13 +50,14 @@ std::map<std::string, std::string> beyond_thesis(
   }
   write_file_atomic(opt.csv_path(name + "_own_putts_runs.csv"), all_runs);
   write_file_atomic(opt.csv_path(name + "_own_putts_curve.csv"), curve);
-  opt.plot(fmt::format(
-      "learning-curve {} {} --xlabel {} --title {}",
-      shell_quote(opt.csv_path(name + "_own_putts_curve.csv")),
-      shell_quote(opt.fig_path(name + "_own_putts.png")),
-      shell_quote("own full-system putts spent (misses included)"),
-      shell_quote(fmt::format("{}: success on {} test situations, median and 10-90 % over {} runs",
-                              name, co.situations, co.seeds))));
+  opt.plot(fmt::format("learning-curve {} {} --xlabel {} --title {}",
+                       shell_quote(opt.csv_path(name + "_own_putts_curve.csv")),
+                       shell_quote(opt.fig_path(name + "_own_putts.png")),
+                       shell_quote("own full-system putts spent (misses included)"),
+                       shell_quote(fmt::format(
+                           "{}: success on {} test situations, median and 10-90 % over {} runs",
+                           name, co.situations, co.seeds))),
+           opt.fig_path(name + "_own_putts.png"));
   md["figures"] +=
       fmt::format("![{} learning from own putts](figures/{}_own_putts.png)\n", name, name);
 
@@ -185,18 +186,20 @@ std::map<std::string, std::string> beyond_thesis(
   }
   write_file_atomic(opt.csv_path(name + "_perception_noise.csv"), pcurve);
   write_file_atomic(opt.csv_path(name + "_torque_noise.csv"), tcurve);
-  opt.plot(fmt::format(
-      "learning-curve {} {} --xlabel {} --title {}",
-      shell_quote(opt.csv_path(name + "_perception_noise.csv")),
-      shell_quote(opt.fig_path(name + "_perception_noise.png")),
-      shell_quote("hole and ball position std [mm]"),
-      shell_quote(fmt::format("{}: success under perception noise (95 % Wilson interval)", name))));
-  opt.plot(fmt::format(
-      "learning-curve {} {} --xlabel {} --title {}",
-      shell_quote(opt.csv_path(name + "_torque_noise.csv")),
-      shell_quote(opt.fig_path(name + "_torque_noise.png")),
-      shell_quote("joint torque noise std [fraction of limits]"),
-      shell_quote(fmt::format("{}: success under execution noise (95 % Wilson interval)", name))));
+  opt.plot(fmt::format("learning-curve {} {} --xlabel {} --title {}",
+                       shell_quote(opt.csv_path(name + "_perception_noise.csv")),
+                       shell_quote(opt.fig_path(name + "_perception_noise.png")),
+                       shell_quote("hole and ball position std [mm]"),
+                       shell_quote(fmt::format(
+                           "{}: success under perception noise (95 % Wilson interval)", name))),
+           opt.fig_path(name + "_perception_noise.png"));
+  opt.plot(fmt::format("learning-curve {} {} --xlabel {} --title {}",
+                       shell_quote(opt.csv_path(name + "_torque_noise.csv")),
+                       shell_quote(opt.fig_path(name + "_torque_noise.png")),
+                       shell_quote("joint torque noise std [fraction of limits]"),
+                       shell_quote(fmt::format(
+                           "{}: success under execution noise (95 % Wilson interval)", name))),
+           opt.fig_path(name + "_torque_noise.png"));
   md["figures"] += fmt::format(
       "![{} perception noise](figures/{}_perception_noise.png) ![{} execution "
       "noise](figures/{}_torque_noise.png)\n",

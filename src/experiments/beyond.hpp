@@ -21,8 +21,8 @@ struct BeyondOptions {
   teacher::TeacherOptions teacher;
   std::function<std::string(const std::string&)> csv_path;  ///< file name -> path
   std::function<std::string(const std::string&)> fig_path;
-  std::function<void(const std::string&)> plot;  ///< plot.py arguments
-  std::function<void(const std::string&)> say;   ///< progress lines
+  std::function<void(const std::string&, const std::string&)> plot;  ///< plot.py arguments, PNG
+  std::function<void(const std::string&)> say;                       ///< progress lines
 };
 
 /// Markdown rows of the field's results, by table: "curves", "goal", "hindsight", "noise", and

@@ -94,7 +94,8 @@ std::map<std::string, std::string> real_robot_rows(
                   shell_quote("own putts on the plant (0: the nominal model)"),
                   shell_quote(fmt::format(
                       "{}: success on {} test situations, median and 10-90 % over {} random plants",
-                      name, ao.situations, rows.size()))));
+                      name, ao.situations, rows.size()))),
+      opt.fig_path(name + "_adaptation.png"));
   md["figures"] += fmt::format("![{} adaptation](figures/{}_adaptation.png)\n", name, name);
   opt.say(fmt::format("{}: adaptation curves over {} plants done", name, rows.size()));
   return md;

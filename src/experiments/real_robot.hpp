@@ -26,7 +26,7 @@ struct RealRobotOptions {
   std::function<double(const std::string&, const std::string&)> thesis;
   std::function<std::string(const std::string&)> csv_path;
   std::function<std::string(const std::string&)> fig_path;
-  std::function<void(const std::string&)> plot;
+  std::function<void(const std::string&, const std::string&)> plot;  ///< plot.py arguments, PNG
   std::function<void(const std::string&)> say;
 };
 

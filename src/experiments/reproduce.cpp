@@ -15,6 +15,7 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "core/plot.hpp"
 #include "core/rng.hpp"
 #include "experiments/beyond.hpp"
 #include "experiments/collect.hpp"
@@ -186,13 +187,9 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
   run_json["plant"] = run_plant.source.empty()
                           ? nlohmann::json()
                           : nlohmann::json{{"path", run_plant.source}, {"hash", run_plant.hash}};
-  const auto plot = [&](const std::string& args) {
+  const auto plot = [&](const std::string& args, const std::string& png) {
     if (!opt.plots || !system::is_root_process()) return;  // one process draws (MPI)
-    const fs::path script = data_dir().parent_path() / "scripts" / "plots" / "plot.py";
-    const std::string cmd =
-        "/usr/bin/python3 " + shell_quote(script.string()) + " " + args + " 1>&2";
-    if (std::system(cmd.c_str()) != 0)
-      throw Error(fmt::format("reproduce: plotting failed: {}", args));
+    run_plot_script(args, png);
   };
   const auto csv_path = [&](const std::string& name) { return (opt.out / "csv" / name).string(); };
   const auto fig_path = [&](const std::string& name) {
@@ -443,10 +440,12 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
       write_file_atomic(csv_path(name + "_learning_curve.csv"), curve);
       say(fmt::format("{}: learning curves done", name));
       plot(fmt::format(
-          "learning-curve {} {} --title {}", shell_quote(csv_path(name + "_learning_curve.csv")),
-          shell_quote(fig_path(name + "_learning_curve.png")),
-          shell_quote(fmt::format("{}: success on {} test situations vs training examples", name,
-                                  curve_situations))));
+               "learning-curve {} {} --title {}",
+               shell_quote(csv_path(name + "_learning_curve.csv")),
+               shell_quote(fig_path(name + "_learning_curve.png")),
+               shell_quote(fmt::format("{}: success on {} test situations vs training examples",
+                                       name, curve_situations))),
+           fig_path(name + "_learning_curve.png"));
     }
 
     // ---- beyond the thesis: the robot teaches itself; baselines; noise
@@ -536,18 +535,21 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
         for (const auto& o : f.outputs) {
           const std::string png = fmt::format("{}_{}_{}.png", name, m, o);
           plot(fmt::format(
-              "model --predictions {} --train {} --validation {} --output {} {} --title {}",
-              shell_quote(p), shell_quote(csv_path(name + "_train.csv")),
-              shell_quote(csv_path(name + "_validation.csv")), o, shell_quote(fig_path(png)),
-              shell_quote(fmt::format("{} {}: {} (mean ± 2σ)", name, m, o))));
+                   "model --predictions {} --train {} --validation {} --output {} {} --title {}",
+                   shell_quote(p), shell_quote(csv_path(name + "_train.csv")),
+                   shell_quote(csv_path(name + "_validation.csv")), o, shell_quote(fig_path(png)),
+                   shell_quote(fmt::format("{} {}: {} (mean ± 2σ)", name, m, o))),
+               fig_path(png));
           figures_md += fmt::format("![{} {} {}](figures/{})\n", name, m, o, png);
         }
       }
-      plot(fmt::format(
-          "dataset {} {} --validation {} --title {}", shell_quote(csv_path(name + "_train.csv")),
-          shell_quote(fig_path(name + "_dataset.png")),
-          shell_quote(csv_path(name + "_validation.csv")),
-          shell_quote(fmt::format("{}: training (green) and validation (red) situations", name))));
+      plot(fmt::format("dataset {} {} --validation {} --title {}",
+                       shell_quote(csv_path(name + "_train.csv")),
+                       shell_quote(fig_path(name + "_dataset.png")),
+                       shell_quote(csv_path(name + "_validation.csv")),
+                       shell_quote(fmt::format(
+                           "{}: training (green) and validation (red) situations", name))),
+           fig_path(name + "_dataset.png"));
       figures_md += fmt::format("![{} data set](figures/{}_dataset.png)\n", name, name);
       // Field height map with the ball paths of the data set's launches (ball-only replays).
       const auto& fl = sys.field();
@@ -571,11 +573,13 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
         write_file_atomic(t, format_csv({"t", "x", "y", "z", "vx", "vy", "vz"}, rows));
         args += fmt::format(" --trajectory {} --hole={},{}", shell_quote(t), hx[r], hy[r]);
       }
-      plot(fmt::format(
-          "field {} {}{} --tee={},{} --title {}", shell_quote(csv_path(name + "_heights.csv")),
-          shell_quote(fig_path(name + "_field.png")), args, fl.tee[0], fl.tee[1],
-          shell_quote(fmt::format(
-              "{}: height map and ball paths of data-set launches (ball-only replays)", name))));
+      plot(
+          fmt::format(
+              "field {} {}{} --tee={},{} --title {}", shell_quote(csv_path(name + "_heights.csv")),
+              shell_quote(fig_path(name + "_field.png")), args, fl.tee[0], fl.tee[1],
+              shell_quote(fmt::format(
+                  "{}: height map and ball paths of data-set launches (ball-only replays)", name))),
+          fig_path(name + "_field.png"));
       figures_md += fmt::format("![{} field](figures/{}_field.png)\n", name, name);
       // Sinking window at the field's own hole around the nearest example.
       std::size_t best = 0;
@@ -596,7 +600,8 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
       plot(fmt::format("sweep {} {} --title {}", shell_quote(csv_path(name + "_sweep.csv")),
                        shell_quote(fig_path(name + "_sweep.png")),
                        shell_quote(fmt::format("{}: sinking window at hole ({:.2f}, {:.2f}), arm",
-                                               name, so.hole[0], so.hole[1]))));
+                                               name, so.hole[0], so.hole[1]))),
+           fig_path(name + "_sweep.png"));
       figures_md += fmt::format("![{} sinking window](figures/{}_sweep.png)\n", name, name);
       say(fmt::format("{}: figures done", name));
     }
@@ -617,10 +622,11 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
 
   write_file_atomic(opt.out / "csv" / "success.csv", success_csv);
   plot(fmt::format(
-      "success {} {} --title {}", shell_quote(csv_path("success.csv")),
-      shell_quote(fig_path("success.png")),
-      shell_quote(
-          "success ratio per field and method (95 % Wilson interval; o = oracle ceiling)")));
+           "success {} {} --title {}", shell_quote(csv_path("success.csv")),
+           shell_quote(fig_path("success.png")),
+           shell_quote(
+               "success ratio per field and method (95 % Wilson interval; o = oracle ceiling)")),
+       fig_path("success.png"));
   run_json["elapsed_s"] = elapsed();
   write_file_atomic(opt.out / "run.json", run_json.dump(2) + "\n");
 
