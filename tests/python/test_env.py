@@ -162,6 +162,8 @@ def test_spaces_are_float32_without_zero_width_dimensions():
                 assert space.dtype == np.float32
                 assert np.all(space.high - space.low > 0), (name, space)
             assert len(env.observation_names) == env.observation_space.shape[0]
+            one = PuttEnv(field=name, mode=mode, observe_field=True)  # a field index of one field
+            assert np.all(one.observation_space.high - one.observation_space.low > 0)
             # every action of the space is a putt inside the envelope, exactly
             e = env.systems[0].envelope
             assert env.action_space.low[0] >= e["angle_min"] and env.action_space.high[0] <= e["angle_max"]
@@ -221,7 +223,7 @@ def test_shaped_reward_is_the_closest_approach_with_its_parts():
         else:
             assert rs == 0.0 and rh == pytest.approx(-i_h["closest_approach"] / 0.5, rel=0, abs=1e-15)
     for bad in (dict(reward="dense"), dict(reward_scale=0.0), dict(reward_scale=float("nan")),
-                dict(max_duration=-1.0), dict(render_mode="ascii"), dict(camera="nope"), dict(render_size=(8, 8))):
+                dict(max_duration=-1.0), dict(max_duration="long"), dict(render_mode="ascii"), dict(camera="nope"), dict(render_size=(8, 8))):
         with pytest.raises(ValueError, match=list(bad)[0]):
             PuttEnv(field="flat", mode="ball", **bad)
 

@@ -183,7 +183,7 @@ class PuttEnv(_Base):
             raise ValueError(f"PuttEnv: reward: expected 'sparse' or 'shaped', got '{reward}'")
         if not (isinstance(reward_scale, (int, float)) and np.isfinite(reward_scale) and 1e-3 <= reward_scale <= 100):
             raise ValueError(f"PuttEnv: reward_scale: expected a length in [0.001, 100] m, got {reward_scale!r}")
-        if not (np.isfinite(max_duration) and 0.01 <= max_duration <= 600):
+        if not (isinstance(max_duration, (int, float)) and np.isfinite(max_duration) and 0.01 <= max_duration <= 600):
             raise ValueError(f"PuttEnv: max_duration: expected a value in [0.01, 600] s, got {max_duration!r}")
         if camera not in ("overview", "side", "top", "follow"):
             raise ValueError(f"PuttEnv: camera: expected overview, side, top or follow, got '{camera}'")
@@ -233,7 +233,8 @@ class PuttEnv(_Base):
         names = [("xi_x", "xi_y")[i] for i in self._kept]
         low, high = low[self._kept], high[self._kept]
         if self.observe_field:
-            low, high = np.append(low, 0.0), np.append(high, float(len(self.systems) - 1))
+            # [0, 1] with one field: a constant index would be a zero-width dimension
+            low, high = np.append(low, 0.0), np.append(high, float(max(len(self.systems) - 1, 1)))
             names.append("field")
         self.observation_names = tuple(names)
         olow, ohigh = _float32_around(low, high)
