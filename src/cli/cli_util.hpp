@@ -47,4 +47,26 @@ inline constexpr const char* kPlantHelp =
     "Plant file: the world as it really is where it differs from the robot's model "
     "(docs/reality.md)";
 
+/// The options every putting command shares (--field, --config, --hitting-model, --plant,
+/// --threads).
+struct SystemArgs {
+  std::string field = "flat";
+  std::string config;
+  std::string hitting_model;
+  std::string plant;
+  int threads = 0;
+};
+
+inline void add_system_options(CLI::App* cmd, SystemArgs& a) {
+  cmd->add_option("--field", a.field, "Shipped field name or path to a field file")
+      ->capture_default_str();
+  cmd->add_option("--config", a.config, "Module config YAML");
+  cmd->add_option("--hitting-model", a.hitting_model,
+                  "Hitting DS model file (default: the shipped one)");
+  cmd->add_option("--plant", a.plant, kPlantHelp);
+  cmd->add_option("--threads", a.threads, "Threads (0: all cores; results do not depend on it)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+}
+
 }  // namespace mg::cli

@@ -11,7 +11,8 @@ void add_ds_commands(CLI::App& app);         // ds fit | ds check | ds rollout
 void add_vision_commands(CLI::App& app);     // vision-sim
 void add_study_commands(CLI::App& app);      // study launch-error
 void add_console_command(CLI::App& app);     // console
-void add_play_commands(CLI::App& app);       // sweep | collect | evaluate
+void add_play_commands(CLI::App& app);       // sweep | collect | evaluate | reproduce
+void add_selfteach_commands(CLI::App& app);  // self-teach | curves
 void add_viz_commands(CLI::App& app);        // view | render
 void add_plot_commands(CLI::App& app);       // plot ds | strength | field | model
 void add_plant_commands(CLI::App& app);      // plant random | show

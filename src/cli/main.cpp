@@ -25,6 +25,7 @@ int run(int argc, char** argv) {
   mg::cli::add_study_commands(app);
   mg::cli::add_console_command(app);
   mg::cli::add_play_commands(app);
+  mg::cli::add_selfteach_commands(app);
   mg::cli::add_viz_commands(app);
   mg::cli::add_plot_commands(app);
   mg::cli::add_plant_commands(app);

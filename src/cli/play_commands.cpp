@@ -1,12 +1,12 @@
 // The robot plays: sweep (sinking windows), collect (the teacher's data sets), evaluate (the
-// learned model on random test situations, thesis table 6.5). All run putts on every core.
+// learned model on random test situations, thesis table 6.5), reproduce (chapter 6). All run
+// putts on every core. The learners that spend their own putts: selfteach_commands.cpp.
 //
-//   sweep --field F [--hole X,Y] --angles A0:A1:N --speeds V0:V1:N [--ball-only] -o OUT.csv [--plot
-//   OUT.png] collect --field F [--strategy S] [--situations SPEC] [--seed S] [--resume] -o DATA.csv
+//   sweep --field F [--hole X,Y] --angles A0:A1:N --speeds V0:V1:N [--ball-only] -o OUT.csv
+//         [--plot OUT.png]
+//   collect --field F [--strategy S] [--situations SPEC] [--seed S] [--resume] -o DATA.csv
 //   evaluate --field F --model M [--situations N] [--seed S] [--no-oracle] [--json] [-o ROWS.csv]
-//   curves --field F --learner self-teach|teacher-gpr|crkr [--seeds N] [--checkpoints 10,25,50] -o
-//   CURVES.csv self-teach --field F --budget N [--seed S] [--batch B] [--log PUTTS.csv] -o
-//   MODEL.json
+//   reproduce [--quick] [--fields F,...] [-o DIR]
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -34,26 +34,6 @@
 
 namespace mg::cli {
 namespace {
-
-struct SystemArgs {
-  std::string field = "flat";
-  std::string config;
-  std::string hitting_model;
-  std::string plant;
-  int threads = 0;
-};
-
-void add_system_options(CLI::App* cmd, SystemArgs& a) {
-  cmd->add_option("--field", a.field, "Shipped field name or path to a field file")
-      ->capture_default_str();
-  cmd->add_option("--config", a.config, "Module config YAML");
-  cmd->add_option("--hitting-model", a.hitting_model,
-                  "Hitting DS model file (default: the shipped one)");
-  cmd->add_option("--plant", a.plant, kPlantHelp);
-  cmd->add_option("--threads", a.threads, "Threads (0: all cores; results do not depend on it)")
-      ->check(CLI::Range(0, 256))
-      ->capture_default_str();
-}
 
 /// "A0:A1:N" -> N values from A0 to A1 inclusive.
 std::vector<double> parse_range(const std::string& what, const std::string& text) {
@@ -314,165 +294,6 @@ void add_evaluate(CLI::App& app) {
   });
 }
 
-void add_self_teach(CLI::App& app) {
-  struct Args {
-    SystemArgs sys;
-    std::string situations, strategy, log, out, prior;
-    int budget = 0;
-    int batch = 1;
-    double arrival = 0.0;
-    std::uint64_t seed = 1;
-  };
-  auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand(
-      "self-teach", "The robot learns a field from its own putts alone: no teacher, no data set");
-  add_system_options(cmd, a->sys);
-  cmd->add_option("--budget", a->budget, "Full-system putts it may spend, misses included")
-      ->required();
-  cmd->add_option("--seed", a->seed, "Seed (candidate targets, GP restarts)")
-      ->check(unsigned_integer())
-      ->capture_default_str();
-  cmd->add_option("--batch", a->batch,
-                  "Putts chosen together per round and played in parallel (the result depends on "
-                  "it, not on --threads)")
-      ->capture_default_str();
-  cmd->add_option("--situations", a->situations,
-                  "Region instead of the field's (as collect --situations)");
-  cmd->add_option("--strategy", a->strategy,
-                  "min-speed | min-angle (default: the field's situations.strategy)");
-  cmd->add_option("--log", a->log, "Also write one CSV row per putt here");
-  cmd->add_option("--arrival-speed", a->arrival,
-                  "Ball speed [m/s] to reach the hole with (default: the strategy's)")
-      ->check(finite_number(0.0, 2.0));
-  cmd->add_option("-o,--output", a->out, "Learner model file to write (as minigolf train)")
-      ->required();
-  cmd->add_option(
-      "--prior", a->prior,
-      "Start from this learner model (learned elsewhere; the result is a residual over it)");
-  cmd->callback([a] {
-    selfteach::SelfTeachOptions o;
-    if (!a->prior.empty()) {
-      auto prior = std::make_shared<learning::Model>(learning::load_model(a->prior));
-      experiments::check_playable_model(*prior, a->prior);
-      o.prior = std::move(prior);
-    }
-    o.budget = a->budget;
-    o.batch = a->batch;
-    o.seed = a->seed;
-    o.threads = a->sys.threads;
-    o.arrival_speed = a->arrival;
-    o.validate();
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
-                             load_plant_arg(a->sys.plant));
-    field::Situations region = field::region_from_spec(sys.field(), a->situations);
-    if (!a->strategy.empty())
-      region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));
-    Progress bar("self-teach", o.budget);
-    const auto r = selfteach::self_teach(sys, region, o, [&](int done, int) { bar.update(done); });
-    bar.finish();
-    if (!a->log.empty()) {
-      std::string csv =
-          "index,target_x,target_y,angle,speed,hit,sunk,closest_approach,launch_angle,launch_speed,"
-          "labels,label_distance\n";
-      for (std::size_t i = 0; i < r.putts.size(); ++i) {
-        const auto& p = r.putts[i];
-        csv += fmt::format("{},{},{},{},{},{:d},{:d},{},{},{},{},{}\n", i, p.target[0], p.target[1],
-                           p.angle, p.speed, p.hit, p.sunk, p.closest_approach, p.launch_angle,
-                           p.launch_speed, p.labels, p.label_distance);
-      }
-      write_file_atomic(a->log, csv);
-    }
-    if (!r.trained)
-      throw InputError(fmt::format(
-          "self-teach: field '{}': {} hindsight label(s) in the region after {} putts (need "
-          "{}): no putt's path crossed the region{}",
-          sys.field().name, r.labels.size(), r.putts.size(), o.prior ? 1 : 2,
-          a->log.empty() ? "" : fmt::format(" (the putts are in {})", a->log)));
-    learning::save_model(r.model, a->out);
-    fmt::print(
-        "self-taught {} in {} full-system putts ({} sank while learning): {} hindsight labels{}; "
-        "labels at "
-        "their own target sank {} of {}; model written to {}\n",
-        sys.field().name, r.putts.size(), r.sunk, r.labels.size(),
-        region.learn_speed ? fmt::format(" at arrival speed {:.3g} m/s", r.arrival_speed)
-                           : fmt::format(" (angle only at {} m/s)", region.speed),
-        r.on_target_sunk, r.on_target, a->out);
-  });
-}
-
-void add_curves(CLI::App& app) {
-  struct Args {
-    SystemArgs sys;
-    std::string learner = "self-teach", checkpoints = "10,25,50,100,150", situations_spec, out,
-                prior;
-    experiments::CurveOptions o;
-  };
-  auto a = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand(
-      "curves", "Learning curves: test success against full-system putts spent, per seed");
-  add_system_options(cmd, a->sys);
-  cmd->add_option("--learner", a->learner,
-                  "self-teach | teacher-gpr | crkr | adapt | adapt-play | append (the last three "
-                  "start from --prior)")
-      ->capture_default_str();
-  cmd->add_option(
-      "--prior", a->prior,
-      "Learner model to adapt (adapt, adapt-play, append), e.g. trained in the nominal simulator");
-  cmd->add_option("--checkpoints", a->checkpoints, "Putt counts, increasing, comma-separated")
-      ->capture_default_str();
-  cmd->add_option("--seeds", a->o.seeds, "Runs")->capture_default_str();
-  cmd->add_option("--situations", a->o.situations, "Test situations per checkpoint")
-      ->capture_default_str();
-  cmd->add_option("--seed", a->o.seed, "Seed of the runs")
-      ->check(unsigned_integer())
-      ->capture_default_str();
-  cmd->add_option("--test-seed", a->o.test_seed, "Seed of the test situations")
-      ->check(unsigned_integer())
-      ->capture_default_str();
-  cmd->add_option("--region", a->situations_spec,
-                  "Region instead of the field's (as collect --situations)");
-  cmd->add_option("-o,--output", a->out, "CSV to write")->required();
-  cmd->callback([a] {
-    const experiments::CurveLearner learner = experiments::parse_curve_learner(a->learner);
-    if (experiments::needs_prior(learner) != !a->prior.empty())
-      throw InputError(
-          a->prior.empty()
-              ? fmt::format("--learner {}: needs --prior MODEL", a->learner)
-              : fmt::format("--prior: only with --learner adapt, adapt-play or append"));
-    if (!a->prior.empty()) {
-      auto prior = std::make_shared<learning::Model>(learning::load_model(a->prior));
-      experiments::check_playable_model(*prior, a->prior);
-      a->o.prior = std::move(prior);
-    }
-    a->o.checkpoints.clear();
-    for (const auto& c : parse_names("--checkpoints", a->checkpoints))
-      a->o.checkpoints.push_back(
-          static_cast<int>(std::min<std::uint64_t>(parse_unsigned("--checkpoints", c), 1000000)));
-    if (a->o.prior && learner == experiments::CurveLearner::kAppend &&
-        (a->o.prior->method != learning::Method::kGpr || a->o.prior->prior))
-      throw InputError(fmt::format(
-          "--learner append: needs a plain GPR prior ({} keeps no data to append to)", a->prior));
-    a->o.threads = a->sys.threads;
-    a->o.validate();
-    check_output_file(a->out);  // before minutes of putts, not after
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
-                             load_plant_arg(a->sys.plant));
-    const field::Situations region = field::region_from_spec(sys.field(), a->situations_spec);
-    a->o.teacher = teacher::options_for(region, "");
-    Progress bar("curves", a->o.seeds);
-    const auto runs = experiments::learning_curves(sys, region, learner, a->o,
-                                                   [&](int done, int) { bar.update(done); });
-    bar.finish();
-    write_file_atomic(a->out, experiments::curves_csv(runs));
-    const auto s = experiments::summarize(runs);
-    for (std::size_t k = 0; k < s.putts.size(); ++k)
-      fmt::print(
-          "{} on {} after {} putts: median {:.1f} % (10-90 %: {:.1f}-{:.1f} %) over {} runs\n",
-          a->learner, sys.field().name, s.putts[k], 100 * s.median[k], 100 * s.q10[k],
-          100 * s.q90[k], runs.size());
-  });
-}
-
 void add_reproduce(CLI::App& app) {
   auto o = std::make_shared<experiments::ReproduceOptions>();
   auto out = std::make_shared<std::string>("out/reproduce");
@@ -538,8 +359,6 @@ void add_play_commands(CLI::App& app) {
   add_sweep(app);
   add_collect(app);
   add_evaluate(app);
-  add_self_teach(app);
-  add_curves(app);
   add_reproduce(app);
 }
 
