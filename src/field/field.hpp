@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "field/obstacles.hpp"
 #include "field/situations.hpp"
 #include "field/surface.hpp"
 
@@ -47,6 +48,7 @@ struct Field {
   double rolling_resistance = 0.131;  ///< Penner's rho [-]: rolling decel (5/7) rho g
   double sliding_friction = 0.3;      ///< ball-lane Coulomb friction while sliding [-]
   Borders borders;
+  std::vector<Obstacle> obstacles;  ///< walls and blocks on the lane (file section `obstacles`)
   Surface surface;
   Situations situations;  ///< where the hole may be (file section `situations`, or the default)
 
