@@ -1,10 +1,11 @@
-// putt --field F --hole X,Y --angle RAD --speed M/S [--ball-only] [--hitting-model FILE]
-//      [--config FILE] [--json]
-//      [--trajectory FILE]
+// putt --field F --hole X,Y --angle RAD --speed M/S [--ball X,Y [--aim RAD]] [--ball-only]
+//      [--hitting-model FILE] [--config FILE] [--plant FILE] [--json] [--trajectory FILE]
 // Without --ball-only the simulated WAM hits the ball (control/full_system.hpp); --angle and
-// --speed are then the hitting angle and the club speed at the ball.
+// --speed are then the hitting angle (in the frame of the base, which stands beside the ball
+// facing --aim: system::stance_for) and the club speed at the ball.
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -43,7 +44,8 @@ nlohmann::json outcome_json(const std::string& field, std::array<double, 2> hole
 constexpr double kTrajectoryInterval = 0.01;
 
 // The arm hits the ball: the module runs in lockstep simulator mode.
-void run_full_system_putt(const std::string& field_name, const std::string& hole_text, double angle,
+void run_full_system_putt(const std::string& field_name, const std::string& hole_text,
+                          const std::string& ball_text, std::optional<double> aim, double angle,
                           double speed, double max_duration, const std::string& model_path,
                           const std::string& config_path, const std::string& plant_path, bool json,
                           const std::string& trajectory_path) {
@@ -56,6 +58,11 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
   control::FullPuttOptions options;
   options.max_duration = max_duration;
   options.record_interval = trajectory_path.empty() ? 0.0 : kTrajectoryInterval;
+  const auto ball = ball_text.empty() ? sys.field().tee : parse_vector<2>("--ball", ball_text);
+  if (!ball_text.empty() || aim) {
+    system::check_ball_position(sys.field(), ball, "--ball");
+    options.stance = system::putt_stance(sys, ball, hole, aim);
+  }
   const control::FullPuttResult r = system::arm_putt(sys, data, hole, angle, speed, options);
   const sim::World& world = sys.arm_world();
   if (r.hit_refused) throw InputError("putt: the module refused the hit request");
@@ -65,6 +72,8 @@ void run_full_system_putt(const std::string& field_name, const std::string& hole
   if (json) {
     nlohmann::json j = outcome_json(world.field().name, hole, angle, speed, out);
     j["plant"] = plant_json(sys.plant());
+    j["ball"] = r.ball_start;
+    j["aim"] = options.stance.yaw;
     j["club"] = {{"angle", r.club.angle}, {"speed", r.club.speed}};
     j["launch"] = {{"angle", r.launch.angle}, {"speed", r.launch.speed}};
     j["timing"] = {{"core_update_p99_us", r.timing.core_update_p99_us},
@@ -88,6 +97,8 @@ void add_putt_command(CLI::App& app) {
   struct Options {
     std::string field = "flat";
     std::string hole;
+    std::string ball;
+    std::optional<double> aim;
     double angle = 0.0;
     double speed = 0.0;
     double max_duration = 30.0;
@@ -103,8 +114,15 @@ void add_putt_command(CLI::App& app) {
   cmd->add_option("--field", o->field, "Shipped field name or path to a field file")
       ->capture_default_str();
   cmd->add_option("--hole", o->hole, "Hole centre X,Y in metres (default: the field's)");
-  cmd->add_option("--angle", o->angle, "Launch angle [rad], counter-clockwise from +x")->required();
-  cmd->add_option("--speed", o->speed, "Launch speed [m/s]")->required();
+  cmd->add_option("--ball", o->ball, "Where the ball lies X,Y in metres (default: the tee)");
+  cmd->add_option("--aim", o->aim,
+                  "With the arm: the direction [rad, world] the base's hitting frame faces "
+                  "(default: from --ball to the hole; without --ball 0)");
+  cmd->add_option("--angle", o->angle,
+                  "Launch angle [rad], counter-clockwise from +x (with the arm: the hitting "
+                  "angle in the base's frame)")
+      ->required();
+  cmd->add_option("--speed", o->speed, "Launch speed [m/s] (with the arm: club speed)")->required();
   cmd->add_option("--max-duration", o->max_duration, "Give up after this simulated time [s]")
       ->capture_default_str();
   cmd->add_flag("--ball-only", o->ball_only, "Launch the ball directly (no arm)");
@@ -119,8 +137,8 @@ void add_putt_command(CLI::App& app) {
   cmd->add_option("--plant", o->plant, kPlantHelp);
   cmd->callback([o] {
     if (!o->ball_only) {
-      run_full_system_putt(o->field, o->hole, o->angle, o->speed, o->max_duration, o->hitting_model,
-                           o->config, o->plant, o->json, o->trajectory);
+      run_full_system_putt(o->field, o->hole, o->ball, o->aim, o->angle, o->speed, o->max_duration,
+                           o->hitting_model, o->config, o->plant, o->json, o->trajectory);
       return;
     }
     sim::PuttRequest request;
@@ -129,8 +147,14 @@ void add_putt_command(CLI::App& app) {
     request.max_duration = o->max_duration;
     request.record_interval = o->trajectory.empty() ? 0.0 : kTrajectoryInterval;
     request.validate();
+    if (o->aim)
+      throw InputError("--aim: only with the arm (a ball-only putt's --angle is its aim)");
     const system::System sys(system::load_config(o->config, o->field, o->hitting_model),
                              load_plant_arg(o->plant));
+    if (!o->ball.empty()) {
+      request.start = parse_vector<2>("--ball", o->ball);
+      system::check_ball_position(sys.field(), *request.start, "--ball");
+    }
     const sim::World& world = sys.ball_world();
     const auto hole =
         o->hole.empty() ? sys.field().hole.position : parse_vector<2>("--hole", o->hole);
@@ -144,6 +168,7 @@ void add_putt_command(CLI::App& app) {
     if (o->json) {
       nlohmann::json j = outcome_json(world.field().name, hole, o->angle, o->speed, out);
       j["plant"] = plant_json(sys.plant());
+      j["ball"] = request.start ? *request.start : sys.field().tee;
       fmt::print("{}\n", j.dump());
     } else {
       fmt::print(

@@ -181,6 +181,7 @@ class TorqueNoise {
 /// The tee, plus a Gaussian error of std `placement_noise` per axis (seeded stream 0).
 std::array<double, 2> noisy_ball_start(const sim::World& world, const FullPuttOptions& options) {
   std::array<double, 2> xy = world.field().tee;
+  if (!options.stance.identity()) xy = {options.stance.position[0], options.stance.position[1]};
   if (!(options.placement_noise > 0.0)) return xy;
   Rng rng(derive_seed(options.seed, 0));
   std::normal_distribution<double> normal(0.0, options.placement_noise);
@@ -221,6 +222,27 @@ void check_ball_world(const sim::World& world, const sim::World& ball) {
         fmt::format("options.ball_world: expected a ball-only world of field '{}' with "
                     "the arm world's options (make_ball_world), got field '{}'",
                     world.field().name, ball.field().name));
+}
+
+/// The arm of `world` must stand where `stance` puts the module's mount: else the module's
+/// frame and the simulated arm disagree and it would hit beside the ball.
+void check_stance(const sim::World& world, const ModuleModel& model, const robot::Stance& stance) {
+  const int base = mj_name2id(world.model(), mjOBJ_BODY, "wam_base");
+  if (base < 0) return;  // checked by the module model's construction
+  const robot::WamMount expected = robot::mount_at(model.arm().mount(), stance);
+  const mjtNum* pos = world.model()->body_pos + 3 * base;
+  const mjtNum* q = world.model()->body_quat + 4 * base;
+  const double yaw = 2.0 * std::atan2(q[3], q[0]);  // a rotation about z only
+  const double dyaw = std::remainder(yaw - expected.base_yaw, 2.0 * robot::kPi);
+  bool ok = std::abs(dyaw) < 1e-9;
+  for (int i = 0; i < 3; ++i)
+    ok = ok && std::abs(pos[i] - expected.base_position[static_cast<std::size_t>(i)]) < 1e-9;
+  if (!ok)
+    throw InputError(fmt::format(
+        "options.stance: the world's arm stands at ({:.3f}, {:.3f}, {:.3f}) yaw {:.3f}, expected "
+        "({:.3f}, {:.3f}, {:.3f}) yaw {:.3f} (build the world with mount_at(mount, stance))",
+        pos[0], pos[1], pos[2], yaw, expected.base_position[0], expected.base_position[1],
+        expected.base_position[2], expected.base_yaw));
 }
 
 }  // namespace
@@ -424,6 +446,9 @@ void FullPuttOptions::validate() const {
   require_in_range("perception_latency", perception_latency, 0.0, 1.0);
   require_in_range("perceived_ball_offset.x", perceived_ball_offset[0], -1.0, 1.0);
   require_in_range("perceived_ball_offset.y", perceived_ball_offset[1], -1.0, 1.0);
+  for (std::size_t i = 0; i < 3; ++i)
+    require_in_range(fmt::format("stance.position[{}]", i), stance.position[i], -100.0, 100.0);
+  require_in_range("stance.yaw", stance.yaw, -2.0 * robot::kPi, 2.0 * robot::kPi);
 }
 
 FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
@@ -432,6 +457,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   const sim::World* ball_world = options.ball_world;
   if (ball_world != nullptr) check_ball_world(world, *ball_world);
   options.validate();
+  check_stance(world, model, options.stance);
   std::unique_ptr<PuttScratch> local;
   if (scratch == nullptr) {
     local = std::make_unique<PuttScratch>();
@@ -442,7 +468,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   world.reset(d);
   world.set_hole(d, hole);
   const std::array<double, 2> ball_start = noisy_ball_start(world, options);
-  if (options.placement_noise > 0.0) world.place_ball(d, ball_start);
+  if (options.placement_noise > 0.0 || !options.stance.identity()) world.place_ball(d, ball_start);
   robot::Vector7 rest;
   for (int j = 0; j < 7; ++j) rest[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
   const auto& cfg = model.config();
@@ -483,7 +509,12 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   perception::SimulatorPerception truth(world, d);
   perception::DelayedPerception delayed(truth, options.perception_latency,
                                         options.perceived_ball_offset);
-  if (plant_vision) run.set_perception(&delayed);
+  perception::StancePerception from_stance(
+      plant_vision ? static_cast<perception::Perception&>(delayed) : truth, options.stance);
+  if (!options.stance.identity())
+    run.set_perception(&from_stance);
+  else if (plant_vision)
+    run.set_perception(&delayed);
   TorqueNoise torque_noise(model, world.model(), options);
   double t_module_hit = -1.0;  // [s] state the module measured when it saw the hit (-1: not yet)
   const auto step = [&] {
@@ -676,6 +707,8 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     if (k == launch_step) {
       const double* bv = d->qvel + ball_dof;
       r.launch = {std::atan2(bv[1], bv[0]), std::hypot(bv[0], bv[1])};
+      if (options.stance.yaw != 0.0)
+        r.launch.angle = std::remainder(r.launch.angle - options.stance.yaw, 2.0 * robot::kPi);
     }
     if (decided || !may_hand_off || k < launch_step || r.touching_ball || d->time <= came_back_at)
       continue;

@@ -144,6 +144,13 @@ struct FullPuttOptions {
   /// [m] The module perceives the ball moved by this for the whole putt (the vision's error).
   std::array<double, 2> perceived_ball_offset{0.0, 0.0};
 
+  // --- Where the arm stands (a mobile base beside the ball; robot/wam_model.hpp). The identity:
+  // the fixed arm beside the tee. Otherwise the ball starts at the stance's position and the
+  // world must have the arm mounted there (make_world_with_arm(field, mount_at(mount, stance))):
+  // the module, built for the robot's own frame, perceives ball and hole in it
+  // (perception::StancePerception), so its DS, envelope and angles are the same from anywhere.
+  robot::Stance stance{};
+
   /// Throws `InputError` naming the first value out of its documented range (max_duration at
   /// most 600 s, as a ball-only putt).
   void validate() const;
@@ -160,9 +167,12 @@ struct FullPuttResult {
   std::array<double, 2> ball_start{0.0, 0.0};  ///< [m] where the ball was placed (tee + noise)
   bool hit_refused = false;                    ///< the module refused the request (envelope, NaN)
   sim::PuttOutcome
-      outcome;        ///< the ball's outcome; duration [s] and steps count from first contact
-  AngleSpeed club;    ///< club face velocity just before first contact (speed: 3-D norm)
-  AngleSpeed launch;  ///< ball velocity launch_delay after contact (horizontal)
+      outcome;  ///< the ball's outcome; duration [s] and steps count from first contact
+  /// Club face velocity just before first contact (speed: 3-D norm) and the ball's velocity
+  /// launch_delay after contact (horizontal); angles in the stance's frame (the robot's: the
+  /// world's for the identity stance).
+  AngleSpeed club;
+  AngleSpeed launch;
   CoreTiming timing;
   double max_torque_ratio = 0.0;            ///< max |tau_j| / limit_j of the applied torques
   double max_raw_torque_ratio = 0.0;        ///< the same before the clamp

@@ -32,6 +32,13 @@ Perceived DelayedPerception::perceive(double now) noexcept {
   return p;
 }
 
+Perceived StancePerception::perceive(double now) noexcept {
+  Perceived p = source_->perceive(now);
+  p.ball = stance_.to_local(p.ball);
+  p.hole = stance_.to_local(p.hole);
+  return p;
+}
+
 Perceived NetworkPerception::perceive(double now) noexcept {
   feed_->poll(now);
   Perceived p;

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "perception/vision_feed.hpp"
+#include "robot/wam_model.hpp"
 #include "sim/world.hpp"
 
 namespace mg::perception {
@@ -59,6 +60,19 @@ class DelayedPerception final : public Perception {
   std::array<double, kHistory> times_{};
   std::array<Perceived, kHistory> history_{};
   int head_ = 0, count_ = 0;
+};
+
+/// `source` seen from a mobile base's own frame (robot::Stance): ball and hole taken from the
+/// world into the robot's frame, as a robot localised in the world does. Real-time safe.
+class StancePerception final : public Perception {
+ public:
+  StancePerception(Perception& source, const robot::Stance& stance)
+      : source_(&source), stance_(stance) {}
+  Perceived perceive(double now) noexcept override;
+
+ private:
+  Perception* source_;
+  robot::Stance stance_;
 };
 
 /// The network vision feed: polls it (draining pending datagrams), then reports its latest

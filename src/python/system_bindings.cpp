@@ -33,6 +33,8 @@ struct PuttResult {
   std::string field;
   bool ball_only = true;
   std::array<double, 2> hole{0, 0};
+  std::array<double, 2> ball{0, 0};  ///< where it lay
+  double aim = 0;                    ///< the base's facing (arm putts) [rad]
   double angle = 0, speed = 0;
   sim::PuttOutcome outcome;
   control::AngleSpeed club, launch;
@@ -45,6 +47,8 @@ py::dict putt_dict(const PuttResult& r) {
   py::dict d;
   d["field"] = r.field;
   d["hole"] = py::make_tuple(r.hole[0], r.hole[1]);
+  d["ball"] = py::make_tuple(r.ball[0], r.ball[1]);
+  if (!r.ball_only) d["aim"] = r.aim;
   d["angle"] = r.angle;
   d["speed"] = r.speed;
   d["sunk"] = o.sunk;
@@ -74,7 +78,8 @@ py::dict putt_dict(const PuttResult& r) {
 
 PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle, double speed,
                    std::optional<std::array<double, 2>> hole_opt, bool ball_only,
-                   double max_duration, double record_interval) {
+                   double max_duration, double record_interval,
+                   std::optional<std::array<double, 2>> ball, std::optional<double> aim) {
   PuttResult r;
   r.field = sys.field().name;
   r.ball_only = ball_only;
@@ -83,6 +88,10 @@ PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle,
   r.hole = hole_opt ? *hole_opt : sys.field().hole.position;
   r.plant_path = sys.plant().source;
   r.plant_hash = sys.plant().hash;
+  r.ball = ball ? *ball : sys.field().tee;
+  if (ball_only && aim)
+    throw InputError("aim: only with the arm (a ball-only putt's angle is its aim)");
+  if (ball) system::check_ball_position(sys.field(), *ball, "ball");
   Lease lease(pdata);
   std::optional<system::SystemData> local;
   py::gil_scoped_release release;
@@ -93,6 +102,7 @@ PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle,
     request.speed = speed;
     request.max_duration = max_duration;
     request.record_interval = record_interval;
+    request.start = ball;
     request.validate();
     field::check_hole_position(sys.field(), r.hole);
     const auto real = system::real_hole(sys, r.hole);  // where the plant's hole really is
@@ -105,6 +115,8 @@ PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle,
   control::FullPuttOptions options;
   options.max_duration = max_duration;
   options.record_interval = record_interval;
+  if (ball || aim) options.stance = system::putt_stance(sys, r.ball, r.hole, aim);
+  r.aim = options.stance.yaw;
   const control::FullPuttResult f = system::arm_putt(sys, data, r.hole, angle, speed, options);
   if (f.hit_refused) throw InputError("putt: the module refused the hit request");
   if (!f.hit) throw NumericalError("putt: the club did not reach the ball");
@@ -172,6 +184,9 @@ void bind_system(py::module_& m) {
       .def_readonly("field", &PuttResult::field)
       .def_readonly("ball_only", &PuttResult::ball_only)
       .def_readonly("hole", &PuttResult::hole, "Hole centre (x, y) [m]")
+      .def_readonly("ball", &PuttResult::ball, "Where the ball lay (x, y) [m]")
+      .def_readonly("aim", &PuttResult::aim,
+                    "The base's facing [rad, world] (arm putts; 0 ball-only)")
       .def_readonly("angle", &PuttResult::angle,
                     "Requested angle [rad] (club hitting angle, or ball launch angle)")
       .def_readonly("speed", &PuttResult::speed,
@@ -306,12 +321,15 @@ void bind_system(py::module_& m) {
           "putt",
           [](const system::System& s, double angle, double speed,
              std::optional<std::array<double, 2>> hole, bool ball_only, double max_duration,
-             double record_interval, PySystemData* data) {
-            return do_putt(s, data, angle, speed, hole, ball_only, max_duration, record_interval);
+             double record_interval, PySystemData* data, std::optional<std::array<double, 2>> ball,
+             std::optional<double> aim) {
+            return do_putt(s, data, angle, speed, hole, ball_only, max_duration, record_interval,
+                           ball, aim);
           },
           py::arg("angle"), py::arg("speed"), py::arg("hole") = py::none(),
           py::arg("ball_only") = false, py::arg("max_duration") = 30.0,
           py::arg("record_interval") = 0.01, py::arg("data") = py::none(),
+          py::arg("ball") = py::none(), py::arg("aim") = py::none(),
           "One putt. Arm (default): hitting angle `angle` [rad] and club speed `speed` [m/s] "
           "within the safe "
           "envelope. ball_only: the ball launched from the tee at `angle` [rad], `speed` [m/s]. "
@@ -320,7 +338,9 @@ void bind_system(py::module_& m) {
           "(0: none; "
           "time from the launch, with the arm from the club's first contact). data: a SystemData "
           "of this "
-          "System (default: a fresh one). Releases the GIL.")
+          "System (default: a fresh one). ball: where the ball lies (x, y) [m] (default: the tee); "
+          "with the arm the base stands beside it facing `aim` [rad, world] (default: the hole) "
+          "and `angle` is in its frame. Releases the GIL.")
       .def(
           "teach",
           [](const system::System& s, std::array<double, 2> hole, const std::string& strategy,

@@ -108,6 +108,28 @@ void WamMount::validate() const {
     require_in_range(fmt::format("mount.joint_friction[{}]", j), joint_friction[j], 0.0, 20.0);
 }
 
+std::array<double, 3> Stance::to_world(const std::array<double, 3>& p) const {
+  if (yaw == 0.0) return {p[0] + position[0], p[1] + position[1], p[2] + position[2]};
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  return {c * p[0] - s * p[1] + position[0], s * p[0] + c * p[1] + position[1], p[2] + position[2]};
+}
+
+std::array<double, 3> Stance::to_local(const std::array<double, 3>& p) const {
+  const double x = p[0] - position[0], y = p[1] - position[1], z = p[2] - position[2];
+  if (yaw == 0.0) return {x, y, z};
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  return {c * x + s * y, -s * x + c * y, z};
+}
+
+WamMount mount_at(const WamMount& local, const Stance& stance) {
+  if (stance.identity()) return local;
+  WamMount m = local;
+  m.base_position = stance.to_world(local.base_position);
+  // The base's yaw kept in (-pi, pi] so that a stance of any yaw is a valid mount.
+  m.base_yaw = std::remainder(local.base_yaw + stance.yaw, 2.0 * kPi);
+  return m;
+}
+
 std::string wam_bodies_mjcf(const WamMount& mount) {
   mount.validate();
   std::string out = fmt::format(

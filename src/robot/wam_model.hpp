@@ -40,6 +40,27 @@ struct WamMount {
   void validate() const;
 };
 
+/// Where a mobile base stands for one stroke (a player walks to the ball): the robot's own frame
+/// (the one its module, hitting DS, envelope and learned models live in: ball foot point at the
+/// origin, default hitting direction +x) placed in the world at `position` [m] (the ball's foot
+/// point: ball x, y and the ground height there), turned by `yaw` [rad] about z. world = R(yaw)
+/// local + position. The identity is the fixed arm beside the field's tee at the origin.
+struct Stance {
+  std::array<double, 3> position{0.0, 0.0, 0.0};
+  double yaw = 0.0;
+  bool identity() const {
+    return position[0] == 0.0 && position[1] == 0.0 && position[2] == 0.0 && yaw == 0.0;
+  }
+  bool operator==(const Stance&) const = default;
+  /// A point of the robot's frame in the world, and back [m].
+  std::array<double, 3> to_world(const std::array<double, 3>& local) const;
+  std::array<double, 3> to_local(const std::array<double, 3>& world) const;
+};
+
+/// `local` (a mount in the robot's frame) placed by `stance`: the base where it stands in the
+/// world. The identity stance gives `local` exactly.
+WamMount mount_at(const WamMount& local, const Stance& stance);
+
 /// [rad] (7) rest posture for the default mount: the club face at about (-0.175, 0, 0.16) m,
 /// vertical, normal along +x; at least 0.13 rad from every joint limit along the IK solutions over
 /// the whole hitting region (notes/robot.md). Also a good IK start and null-space posture.

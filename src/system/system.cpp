@@ -54,6 +54,7 @@ System::System(const control::ModuleConfig& config, field::Field field, plant::P
   if (plant_.arm.club_restitution_scale != 1.0)
     true_mount.club.face_restitution =
         std::min(0.99, belief_mount.club.face_restitution * plant_.arm.club_restitution_scale);
+  true_mount_ = true_mount;
   arm_world_ = std::make_unique<sim::World>(
       control::make_world_with_arm(plant::true_field(belief_, plant_), true_mount));
   ball_world_ = std::make_unique<sim::World>(control::make_ball_world(*arm_world_));
@@ -77,6 +78,44 @@ void System::check_speed(double speed, const std::string& what) const {
     throw InputError(
         fmt::format("{}: speed: expected {}..{} m/s (club speed, safe envelope), got {}", what,
                     c.speed_min, c.speed_max, speed));
+}
+
+std::unique_ptr<sim::World> System::make_arm_world_at(const robot::Stance& stance) const {
+  return std::make_unique<sim::World>(control::make_world_with_arm(
+      arm_world_->field(), robot::mount_at(true_mount_, stance), arm_world_->options()));
+}
+
+robot::Stance stance_for(const System& system, std::array<double, 2> ball, double aim) {
+  robot::Stance s;
+  // As high above the ground under the ball as the arm beside the tee stands above the tee's.
+  const field::Field& f = system.field();
+  s.position = {ball[0], ball[1], f.height(ball[0], ball[1]) - f.height(f.tee[0], f.tee[1])};
+  s.yaw = std::remainder(aim, 2.0 * robot::kPi);
+  if (s.position[2] == 0.0) s.position[2] = 0.0;  // -0.0 -> 0.0: the identity stays exact
+  return s;
+}
+
+robot::Stance putt_stance(const System& system, std::array<double, 2> ball,
+                          std::array<double, 2> hole, std::optional<double> aim) {
+  check_ball_position(system.field(), ball, "ball");
+  if (aim && !std::isfinite(*aim))
+    throw InputError(fmt::format("aim: expected a number, got {}", *aim));
+  return stance_for(system, ball, aim ? *aim : std::atan2(hole[1] - ball[1], hole[0] - ball[0]));
+}
+
+void check_ball_position(const field::Field& field, std::array<double, 2> ball,
+                         const std::string& what) {
+  const auto& b = field.bounds;
+  const double r = field.ball.radius;
+  if (!std::isfinite(ball[0]) || !std::isfinite(ball[1]) || ball[0] < b[0] + r ||
+      ball[0] > b[1] - r || ball[1] < b[2] + r || ball[1] > b[3] - r)
+    throw InputError(
+        fmt::format("{}: expected a ball on the lane [{}, {}] x [{}, {}], got ({}, {})", what,
+                    b[0] + r, b[1] - r, b[2] + r, b[3] - r, ball[0], ball[1]));
+  for (std::size_t i = 0; i < field.obstacles.size(); ++i)
+    if (field.obstacles[i].distance(ball) < r)
+      throw InputError(fmt::format("{}: the ball at ({}, {}) lies inside obstacle {} ({})", what,
+                                   ball[0], ball[1], i, field::to_string(field.obstacles[i].type)));
 }
 
 SystemData::SystemData(const System& system)
@@ -137,13 +176,28 @@ control::FullPuttResult arm_putt(const System& system, SystemData& data, std::ar
   // The roll finishes in the ball-only world once the club has left the ball (same outcome,
   // notes/speed.md); the scratch caches the approach to the rest pose of recent angles.
   if (options.ball_world == nullptr) options.ball_world = &system.ball_world();
-  return control::full_system_putt(system.arm_world(), system.module(), data.arm.get(), hole, angle,
-                                   speed, options, data.scratch.get());
+  // A field whose tee is not the robot frame's origin: the base stands beside the tee.
+  if (options.stance.identity()) options.stance = stance_for(system, system.field().tee, 0.0);
+  if (options.stance.identity())
+    return control::full_system_putt(system.arm_world(), system.module(), data.arm.get(), hole,
+                                     angle, speed, options, data.scratch.get());
+  check_ball_position(system.field(), {options.stance.position[0], options.stance.position[1]},
+                      "ball");
+  if (!data.stance_world || !(data.stance == options.stance)) {
+    data.stance_arm.reset();
+    data.stance_world = system.make_arm_world_at(options.stance);
+    data.stance = options.stance;
+    data.stance_arm = data.stance_world->make_data();
+  }
+  return control::full_system_putt(*data.stance_world, system.module(), data.stance_arm.get(), hole,
+                                   angle, speed, options, data.scratch.get());
 }
 
 sim::PuttOutcome ball_putt(const System& system, SystemData& data, std::array<double, 2> hole,
-                           double angle, double speed, double record_interval) {
+                           double angle, double speed, double record_interval,
+                           std::optional<std::array<double, 2>> start) {
   field::check_hole_position(system.field(), hole);
+  if (start) check_ball_position(system.field(), *start, "ball");
   if (!system.plant().empty()) {
     hole = real_hole(system, hole);
     field::check_hole_position(system.ball_world().field(), hole);
@@ -152,6 +206,7 @@ sim::PuttOutcome ball_putt(const System& system, SystemData& data, std::array<do
   request.angle = angle;
   request.speed = speed;
   request.record_interval = record_interval;
+  request.start = start;
   return sim::simulate_putt(system.ball_world(), data.ball.get(), hole, request);
 }
 

@@ -61,6 +61,11 @@ class System {
   /// The speed half of `check_request`.
   void check_speed(double speed, const std::string& what) const;
 
+  /// The arm world with the mobile base at `stance` (the true field, the real arm, mounted at
+  /// robot::mount_at(its mount, stance)); for the identity, a copy of arm_world()'s build. For
+  /// the world builder (arm_putt), not for the robot's decisions.
+  std::unique_ptr<sim::World> make_arm_world_at(const robot::Stance& stance) const;
+
  private:
   control::ModuleConfig config_;
   field::Field belief_;
@@ -68,7 +73,21 @@ class System {
   std::unique_ptr<sim::World> arm_world_;
   std::unique_ptr<sim::World> ball_world_;
   std::unique_ptr<control::ModuleModel> module_;
+  robot::WamMount true_mount_;  ///< the real arm in the robot's frame (the plant's friction, club)
 };
+
+/// The stance rule (docs/play.md "The ball wherever it lies"): the base stands beside the ball as
+/// it stands beside the tee, its hitting frame turned to `aim` [rad, world]: the robot's frame
+/// has the ball at its origin (x, y) and +x along `aim`; the base stands as high above the
+/// (believed) ground under the ball as above the ground under the tee. For the field's tee at the
+/// origin and aim 0: the identity.
+robot::Stance stance_for(const System& system, std::array<double, 2> ball, double aim);
+
+/// The stance of a putt of the ball at `ball` towards `hole` (as `putt --ball` and Python's
+/// `System.putt(ball=)` choose it): checked on the lane, facing `aim` [rad, world] or, without
+/// one, the hole.
+robot::Stance putt_stance(const System& system, std::array<double, 2> ball,
+                          std::array<double, 2> hole, std::optional<double> aim);
 
 /// Per-thread mutable state for putts on one System.
 struct SystemData {
@@ -76,6 +95,11 @@ struct SystemData {
   sim::DataPtr arm;                               ///< for full-system putts
   sim::DataPtr ball;                              ///< for ball-only putts
   std::unique_ptr<control::PuttScratch> scratch;  ///< hand-off data, approach cache (bit-neutral)
+  /// The arm world of the last non-identity stance and its data (rebuilt when the stance
+  /// changes; a world per stance keeps System immutable and shared).
+  std::unique_ptr<sim::World> stance_world;
+  robot::Stance stance;
+  sim::DataPtr stance_arm;
 };
 
 /// Where the hole really is when the robot sees it at `hole`: + the plant's hole offset and this
@@ -85,14 +109,23 @@ std::array<double, 2> real_hole(const System& system, std::array<double, 2> hole
 
 /// The arm hits the ball (lockstep simulator mode) with the hole seen at `hole` (real_hole is
 /// where it is): hitting angle `angle` [rad], club speed `speed` [m/s]; the plant's arm and vision
-/// act (the module sees the ball off by this situation's vision error). Deterministic. Throws
-/// InputError for a bad hole.
+/// act (the module sees the ball off by this situation's vision error). The ball lies at
+/// options.stance's position, the base beside it (stance_for); the identity stance means the
+/// field's tee with aim 0. `angle` and the result's club and launch angles are in the stance's
+/// frame (aim + angle in the world). Deterministic. Throws InputError for a bad hole or a ball
+/// off the lane.
 control::FullPuttResult arm_putt(const System& system, SystemData& data, std::array<double, 2> hole,
                                  double angle, double speed, control::FullPuttOptions options = {});
 
-/// The ball alone, launched from the tee at `angle` [rad], `speed` [m/s] (no spin), the hole seen
-/// at `hole` (really at real_hole(system, hole)).
+/// The ball alone, launched from `start` (default: the tee) at `angle` [rad, world], `speed`
+/// [m/s] (no spin), the hole seen at `hole` (really at real_hole(system, hole)).
 sim::PuttOutcome ball_putt(const System& system, SystemData& data, std::array<double, 2> hole,
-                           double angle, double speed, double record_interval = 0.0);
+                           double angle, double speed, double record_interval = 0.0,
+                           std::optional<std::array<double, 2>> start = std::nullopt);
+
+/// Throws InputError naming `what` unless a ball at `ball` lies on the lane, a ball radius from
+/// its borders and clear of every obstacle.
+void check_ball_position(const field::Field& field, std::array<double, 2> ball,
+                         const std::string& what);
 
 }  // namespace mg::system

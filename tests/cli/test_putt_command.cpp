@@ -32,6 +32,23 @@ TEST(PuttCommand, AimedPuttOnTheFlatSinks) {
   EXPECT_TRUE(nlohmann::json::parse(r.out)["sunk"].get<bool>()) << r.out;
 }
 
+// The case: the ball moved to (1.0, 0.3) on flat, the base beside it facing the hole.
+TEST(PuttCommand, TheArmPuttsFromWhereverTheBallLies) {
+  const auto r = run_minigolf("putt --field flat --ball 1.0,0.3 --angle 0 --speed 0.6 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["ball"], nlohmann::json::parse("[1.0, 0.3]"));
+  EXPECT_NEAR(j["aim"].get<double>(), std::atan2(-0.3, 1.0), 1e-12);  // towards the hole (2, 0)
+  const auto rest = j["rest_position"].get<std::array<double, 2>>();
+  EXPECT_GT(rest[0], 1.1) << r.out;
+  EXPECT_LT(rest[1], 0.3) << r.out;
+  const auto off = run_minigolf("putt --field flat --ball 9,0 --angle 0 --speed 0.6");
+  EXPECT_EQ(off.exit_code, 2);
+  EXPECT_NE(off.err.find("--ball"), std::string::npos) << off.err;
+  const auto aim = run_minigolf("putt --field flat --ball-only --aim 1 --angle 0 --speed 0.6");
+  EXPECT_EQ(aim.exit_code, 2);
+}
+
 TEST(PuttCommand, TrajectoryCsvHasTheDocumentedHeader) {
   const auto path = std::filesystem::temp_directory_path() / "mg_traj.csv";
   const auto r = run_minigolf(

@@ -72,6 +72,21 @@ def test_arm_putt_equals_cli_json_bit_for_bit(flat):
     assert np.hypot(traj[-1, 1] - theirs["rest_position"][0], traj[-1, 2] - theirs["rest_position"][1]) < 0.01
 
 
+def test_putt_from_wherever_the_ball_lies_equals_the_cli(flat):
+    ours = as_json(flat.putt(0.0, 0.6, ball=(1.0, 0.3), record_interval=0.0).to_dict())
+    theirs = json.loads(cli("putt", "--field", "flat", "--ball", "1.0,0.3", "--angle", "0",
+                            "--speed", "0.6", "--json").stdout)
+    ours.pop("timing"), theirs.pop("timing")
+    assert ours == theirs and ours["ball"] == [1.0, 0.3]
+    assert abs(ours["aim"] - np.arctan2(-0.3, 1.0)) < 1e-12  # facing the hole (2, 0)
+    rolled = flat.putt(0.0, 1.0, ball_only=True, ball=(0.5, 0.2))
+    assert list(rolled.ball) == [0.5, 0.2] and rolled.rest_position[0] > 0.6
+    with pytest.raises(ValueError, match="ball"):
+        flat.putt(0.0, 0.6, ball=(9.0, 0.0))
+    with pytest.raises(ValueError, match="aim"):
+        flat.putt(0.0, 0.6, ball_only=True, aim=1.0)
+
+
 def test_putt_on_another_hole_and_field():
     hill = minigolf.System(field="regular-hill")
     r = hill.putt(0.0, 1.5, hole=(1.8, 0.1), ball_only=True)
