@@ -82,6 +82,29 @@ SurfaceTerm parse_term(MapReader r, const Field& field, const std::filesystem::p
   return term;
 }
 
+Obstacle parse_obstacle(MapReader r) {
+  const std::string type = r.text("type", "");
+  Obstacle o;
+  if (type == "wall") {
+    o.type = ObstacleType::kWall;
+    o.from = r.numbers<2>("from");
+    o.to = r.numbers<2>("to");
+    o.thickness = r.number("thickness", o.thickness);
+  } else if (type == "block") {
+    o.type = ObstacleType::kBlock;
+    o.center = r.numbers<2>("center");
+    o.size = r.numbers<2>("size");
+    o.yaw = r.number("yaw", 0.0);
+  } else {
+    r.fail(r.full("type"),
+           fmt::format("unknown obstacle type '{}' (expected wall or block)", type));
+  }
+  o.height = r.number("height", o.height);
+  o.restitution = r.number("restitution", o.restitution);
+  r.finish();
+  return o;
+}
+
 Situations parse_situations(MapReader r, const Field& field) {
   Situations s;
   s.from_file = true;
@@ -162,12 +185,48 @@ void Field::validate() const {
   require_in_range(where("sliding_friction"), sliding_friction, 0.01, 2.0);
   require_in_range(where("borders.height"), borders.height, 2.0 * ball.radius, 1.0);
   require_in_range(where("borders.thickness"), borders.thickness, 0.005, 0.5);
-  require_in_range(where("borders.restitution"), borders.restitution, 0.0, 0.95);
+  require_in_range(where("borders.restitution"), borders.restitution, 0.0, kMaxWallRestitution);
   const double margin = ball.radius;
   if (tee[0] < bounds[0] + margin || tee[0] > bounds[1] - margin || tee[1] < bounds[2] + margin ||
       tee[1] > bounds[3] - margin)
     throw InputError(fmt::format("{}: expected a point inside the lane, got ({}, {})", where("tee"),
                                  tee[0], tee[1]));
+  if (obstacles.size() > kMaxObstacles)
+    throw InputError(fmt::format("{}: expected at most {} obstacles, got {}", where("obstacles"),
+                                 kMaxObstacles, obstacles.size()));
+  for (std::size_t i = 0; i < obstacles.size(); ++i) {
+    const Obstacle& o = obstacles[i];
+    const auto key = [&](std::string_view k) {
+      return where(fmt::format("obstacles[{}].{}", i, k));
+    };
+    if (o.type == ObstacleType::kWall) {
+      for (std::size_t k = 0; k < 2; ++k) {
+        require_in_range(key("from"), o.from[k], -100.0, 100.0);
+        require_in_range(key("to"), o.to[k], -100.0, 100.0);
+      }
+      const double length = std::hypot(o.to[0] - o.from[0], o.to[1] - o.from[1]);
+      if (!(length >= 0.01))
+        throw InputError(
+            fmt::format("{}: expected a wall at least 0.01 m long, got {} m", key("to"), length));
+      require_in_range(key("thickness"), o.thickness, 0.005, 0.5);
+    } else {
+      for (std::size_t k = 0; k < 2; ++k) {
+        require_in_range(key("center"), o.center[k], -100.0, 100.0);
+        require_in_range(key("size"), o.size[k], 0.01, 50.0);
+      }
+      require_in_range(key("yaw"), o.yaw, -10.0, 10.0);
+    }
+    require_in_range(key("height"), o.height, 2.0 * ball.radius, 1.0);
+    require_in_range(key("restitution"), o.restitution, 0.0, kMaxWallRestitution);
+    const Footprint fp = o.footprint();
+    if (fp.center[0] < bounds[0] || fp.center[0] > bounds[1] || fp.center[1] < bounds[2] ||
+        fp.center[1] > bounds[3])
+      throw InputError(fmt::format("{}: the obstacle's centre ({}, {}) lies outside the lane",
+                                   key("type"), fp.center[0], fp.center[1]));
+    if (o.distance(tee) < ball.radius)
+      throw InputError(fmt::format("{}: the tee ({}, {}) lies inside this {}", where("tee"), tee[0],
+                                   tee[1], to_string(o.type)));
+  }
   check_hole_position(*this, hole.position);
   // The surface must be finite and not absurdly steep anywhere on the lane.
   const int n = 64;
@@ -201,6 +260,12 @@ void check_hole_position(const Field& field, std::array<double, 2> p) {
         fmt::format("hole position: ({}, {}) puts the hole outside the lane of field '{}' "
                     "(x in [{}, {}], y in [{}, {}], hole radius {})",
                     p[0], p[1], field.name, b[0], b[1], b[2], b[3], r));
+  for (std::size_t i = 0; i < field.obstacles.size(); ++i)
+    if (field.obstacles[i].distance(p) < r)
+      throw InputError(
+          fmt::format("hole position: ({}, {}) puts the hole inside obstacle {} ({}) "
+                      "of field '{}'",
+                      p[0], p[1], i, to_string(field.obstacles[i].type), field.name));
   // A ball resting in or over the cup before the stroke is not a putt.
   const double gap = std::hypot(p[0] - field.tee[0], p[1] - field.tee[1]);
   if (gap < r + field.ball.radius)
@@ -256,6 +321,16 @@ Field parse_field(std::string_view yaml_text, const std::string& source,
       f.borders.thickness = borders.number("thickness", f.borders.thickness);
       f.borders.restitution = borders.number("restitution", f.borders.restitution);
       borders.finish();
+    }
+    if (r.has("obstacles")) {
+      const YAML::Node obstacles = r.require("obstacles");
+      if (!obstacles.IsSequence()) r.fail("obstacles", "expected a list of walls and blocks");
+      if (obstacles.size() > kMaxObstacles)
+        r.fail("obstacles", fmt::format("expected at most {} obstacles, got {}", kMaxObstacles,
+                                        obstacles.size()));
+      for (std::size_t i = 0; i < obstacles.size(); ++i)
+        f.obstacles.push_back(
+            parse_obstacle(MapReader(obstacles[i], source, fmt::format("obstacles[{}]", i))));
     }
     const YAML::Node surface = r.require("surface");
     if (!surface.IsSequence() || surface.size() == 0)

@@ -1,7 +1,9 @@
 #include "field/field_json.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <utility>
 
 namespace mg::field {
 namespace {
@@ -57,6 +59,24 @@ nlohmann::json field_to_json(const Field& f) {
       z_min = std::min(z_min, z);
       z_max = std::max(z_max, z);
     }
+  nlohmann::json obstacles = nlohmann::json::array();
+  for (const Obstacle& o : f.obstacles) {
+    nlohmann::json j = {
+        {"type", to_string(o.type)}, {"height", o.height}, {"restitution", o.restitution}};
+    if (o.type == ObstacleType::kWall) {
+      j["from"] = o.from, j["to"] = o.to, j["thickness"] = o.thickness;
+    } else {
+      j["center"] = o.center, j["size"] = o.size, j["yaw"] = o.yaw;
+    }
+    const Footprint fp = o.footprint();
+    const double c = std::cos(fp.yaw), s = std::sin(fp.yaw);
+    nlohmann::json corners = nlohmann::json::array();
+    for (const auto& [u, v] : {std::pair{1, 1}, {-1, 1}, {-1, -1}, {1, -1}})
+      corners.push_back({fp.center[0] + c * u * fp.half[0] - s * v * fp.half[1],
+                         fp.center[1] + s * u * fp.half[0] + c * v * fp.half[1]});
+    j["corners"] = corners;  // the footprint, counter-clockwise, for drawing
+    obstacles.push_back(j);
+  }
   return {
       {"name", f.name},
       {"description", f.description},
@@ -77,6 +97,7 @@ nlohmann::json field_to_json(const Field& f) {
         {"restitution", f.borders.restitution}}},
       {"height_range", {z_min, z_max}},
       {"surface", terms},
+      {"obstacles", obstacles},
   };
 }
 
