@@ -1,0 +1,100 @@
+#pragma once
+/// Choosing a stroke (docs/play.md "Choosing a putt"): a search over ball launches with imagined
+/// ball-only putts in a world (the robot's own model of the field, or the true one for the oracle
+/// planner), scored by the expected strokes to finish the hole under a launch error.
+///
+/// 1. Direct: launch angles around the line to the hole (+-kDirectSpan, kFineStep apart) at a
+///    geometric ladder of launch speeds.
+/// 2. If no direct launch sinks with probability >= accept_probability: every direction around
+///    the ball (kCoarseStep apart, every other speed), then the kRefineRegions directions whose
+///    paths came nearest the hole, refined at kFineStep (bank shots off borders and walls).
+/// 3. Score of a launch: E = 1 + sum over its neighbours in the launch grid, weighted by the
+///    launch error (a Gaussian in angle and in relative speed), of (1 - sunk) V(rest), with V the
+///    strokes-to-go heuristic below; the smallest E wins (a lay-up when nothing sinks surely).
+/// V(p) = 1 + [the straight line from p to the hole is blocked by an obstacle] + 0.05 per metre
+/// to the hole; a ball that left the lane adds its penalty stroke.
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <tuple>
+#include <vector>
+
+#include "field/field.hpp"
+#include "system/system.hpp"
+
+namespace mg::game {
+
+/// What the search needs of an imagined putt.
+struct Imagined {
+  bool sunk = false;
+  bool left_lane = false;
+  std::array<double, 2> rest{0, 0};  ///< [m]
+  double closest_approach = 0.0;     ///< [m]
+};
+
+/// A launch's error as the player knows it: std of the launch angle [rad] and of the launch
+/// speed relative to its aim [-]. Zero: exact execution (the oracle).
+struct LaunchError {
+  double angle = 0.0;
+  double speed = 0.0;
+};
+
+struct PlannerOptions {
+  double speed_min = 0.35;  ///< [m/s] launch speeds searched
+  double speed_max = 4.2;
+  int speeds = 22;                  ///< geometric ladder
+  double accept_probability = 0.9;  ///< a direct sink this sure ends the search
+  int threads = 0;                  ///< 0: all cores
+  void validate() const;
+};
+
+inline constexpr double kFineStep = 0.004;   ///< [rad]
+inline constexpr double kDirectSpan = 0.14;  ///< [rad]
+inline constexpr double kCoarseStep = 0.02;  ///< [rad]
+inline constexpr int kRefineRegions = 6;
+inline constexpr double kRefineSpan = 0.03;  ///< [rad]
+
+struct StrokePlan {
+  double angle = 0.0;  ///< [rad, world] launch direction
+  double speed = 0.0;  ///< [m/s] launch speed
+  double sink_probability = 0.0;
+  double expected_strokes = 0.0;  ///< to finish the hole, this stroke included
+  bool bank = false;              ///< found by the all-round search (not near the direct line)
+  int imagined_putts = 0;         ///< putts simulated for this plan (cache hits excluded)
+};
+
+/// Memo of imagined putts by (world, ball, angle, speed, hole) bits: a deterministic function, so
+/// the same stroke situation (the tee of every seed, the oracle and a robot sharing a world) is
+/// searched once. Thread-safe.
+class ImaginedCache {
+ public:
+  bool find(const std::array<double, 6>& key, Imagined& out) const;
+  void store(const std::array<double, 6>& key, const Imagined& value);
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::array<double, 6>, Imagined> map_;
+};
+
+/// Ball-only putts in `system`'s ball world from `ball`, simulated (the fast planning path) in
+/// parallel; results by index (the same bits for any thread count).
+std::vector<Imagined> imagine(const system::System& system, std::array<double, 2> ball,
+                              std::array<double, 2> hole,
+                              const std::vector<std::array<double, 2>>& launches, int threads,
+                              ImaginedCache* cache, int* simulated);
+
+/// Strokes-to-go heuristic V after a ball that did not sink stops at `rest` (see file comment).
+double strokes_to_go(const field::Field& field, std::array<double, 2> rest, bool left_lane);
+
+/// True if the segment a -> b passes within `clearance` [m] of an obstacle.
+bool line_blocked(const field::Field& field, std::array<double, 2> a, std::array<double, 2> b,
+                  double clearance);
+
+/// The best stroke from `ball` to `hole` in `system`'s ball world under `error`.
+StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
+                       std::array<double, 2> hole, const LaunchError& error,
+                       const PlannerOptions& options, ImaginedCache* cache = nullptr);
+
+}  // namespace mg::game

@@ -1,0 +1,81 @@
+#pragma once
+/// Playing a round (docs/play.md): every hole of a course, stroke after stroke from where the
+/// ball lies, by one of three players:
+/// - robot: plans each stroke in its own model of the field (the field file, never the plant)
+///   with the planner (game/planner.hpp), then hits with the arm (the full system, in the true
+///   world): the base stands beside the ball facing the planned launch direction, and its launch
+///   skill (calibrated with its own putts from the tee, counted as learning putts, and refined by
+///   every stroke it plays) turns the launch into a club request.
+/// - oracle: plans in the true world with exact execution and plays ball-only putts there (the
+///   best a planner of this search can do; the baseline).
+/// - greedy: aims the arm at the hole with the speed whose imagined putt ends nearest the hole.
+/// A ball that leaves the lane is put back where it left (pulled a ball radius + 1 cm inside the
+/// borders and off any obstacle) with one penalty stroke; a hole ends when sunk or at
+/// `max_strokes` strokes, penalties included.
+#include <array>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "game/course.hpp"
+#include "game/planner.hpp"
+#include "plant/plant.hpp"
+
+namespace mg::game {
+
+enum class Player { kRobot, kOracle, kGreedy };
+std::string to_string(Player player);
+/// "robot", "oracle" or "greedy"; throws InputError naming `what` otherwise.
+Player parse_player(const std::string& text, const std::string& what);
+
+struct RoundOptions {
+  Player player = Player::kRobot;
+  std::uint64_t seed = 0;
+  int calibration_putts = 6;     ///< per field: the robot's learning putts (1..50)
+  double vision_noise = 0.002;   ///< [m] std per axis of the robot's view of the ball per stroke
+  PlannerOptions planner;
+  void validate() const;
+};
+
+struct StrokeRecord {
+  std::array<double, 2> ball{0, 0};  ///< where it lay [m]
+  double angle = 0.0;                ///< [rad, world] planned launch direction
+  double speed = 0.0;                ///< [m/s] planned launch speed
+  std::array<double, 2> rest{0, 0};  ///< where it stopped (or left the lane) [m]
+  bool sunk = false;
+  bool left_lane = false;  ///< a penalty stroke follows
+  double sink_probability = 0.0;  ///< the plan's
+  bool bank = false;
+  std::vector<std::array<double, 2>> path;  ///< the ball's path (10 ms apart)
+};
+
+struct HoleResult {
+  std::string field;
+  int par = 0;
+  int strokes = 0;  ///< putts + penalties
+  bool sunk = false;
+  std::vector<StrokeRecord> putts;
+};
+
+struct RoundResult {
+  std::string course;
+  Player player = Player::kRobot;
+  std::vector<HoleResult> holes;
+  int total_strokes = 0;
+  int total_par = 0;
+  int learning_putts = 0;   ///< the robot's calibration putts, over all fields
+  int imagined_putts = 0;   ///< ball-only putts simulated by the planner
+};
+
+/// Plays `course` on `plant` (the true world; empty: the field files). `config` is the module
+/// configuration every hole's System is built from (its field replaced by the hole's). Progress:
+/// `on_stroke(hole index, stroke)` after every stroke. Deterministic for a seed.
+RoundResult play_round(const Course& course, const control::ModuleConfig& config,
+                       const plant::Plant& plant, const RoundOptions& options,
+                       ImaginedCache* cache = nullptr,
+                       const std::function<void(int, const StrokeRecord&)>& on_stroke = {});
+
+/// Where a ball that left the lane at `p` is put back (see the file comment).
+std::array<double, 2> replace_ball(const field::Field& field, std::array<double, 2> p);
+
+}  // namespace mg::game
