@@ -17,5 +17,6 @@ void add_viz_commands(CLI::App& app);        // view | render
 void add_plot_commands(CLI::App& app);       // plot ds | strength | field | model
 void add_plant_commands(CLI::App& app);      // plant random | show
 void add_adaptation_command(CLI::App& app);  // study adaptation (after add_study_commands)
+void add_round_command(CLI::App& app);       // play
 
 }  // namespace mg::cli

@@ -44,8 +44,7 @@ Course parse_course(std::string_view yaml_text, const std::string& source,
     throw InputError(fmt::format("{}: name: expected 1..200 characters", source));
   c.max_strokes = r.has("max_strokes") ? r.integer("max_strokes") : c.max_strokes;
   if (c.max_strokes < 1 || c.max_strokes > 20)
-    throw InputError(
-        fmt::format("{}: max_strokes: expected 1..20, got {}", source, c.max_strokes));
+    throw InputError(fmt::format("{}: max_strokes: expected 1..20, got {}", source, c.max_strokes));
   const YAML::Node holes = r.require("holes");
   if (!holes.IsSequence() || holes.size() == 0 || holes.size() > kMaxHoles)
     throw InputError(fmt::format("{}: holes: expected a list of 1..{} holes", source, kMaxHoles));
@@ -91,13 +90,14 @@ Course load_course(std::string_view name_or_path) {
   if (arg.empty()) throw InputError("course: expected a name or a path, got ''");
   const bool is_path =
       arg.find('/') != std::string::npos || arg.ends_with(".yaml") || arg.ends_with(".yml");
-  std::filesystem::path path = is_path ? std::filesystem::path(arg)
-                                       : data_dir() / "courses" / (arg + ".yaml");
+  std::filesystem::path path =
+      is_path ? std::filesystem::path(arg) : data_dir() / "courses" / (arg + ".yaml");
   std::error_code ec;
   if (!is_path && !std::filesystem::exists(path, ec))
-    throw InputError(fmt::format("course: unknown course '{}' (shipped: {}; give a path for "
-                                 "your own file)",
-                                 shown_path(arg), fmt::join(list_shipped_courses(), ", ")));
+    throw InputError(
+        fmt::format("course: unknown course '{}' (shipped: {}; give a path for "
+                    "your own file)",
+                    shown_path(arg), fmt::join(list_shipped_courses(), ", ")));
   return parse_course(read_text_file(path), path.string(), path.parent_path());
 }
 

@@ -38,7 +38,7 @@ void run_block(const system::System& system, std::array<double, 2> ball, std::ar
   std::vector<std::array<double, 2>> launches;
   launches.reserve(b.angles.size() * b.speeds.size());
   for (double a : b.angles)
-    for (double s : b.speeds) launches.push_back({a, s});
+    for (double s : b.speeds) launches.push_back({wrap(a), s});
   int n = 0;
   b.out = imagine(system, ball, hole, launches, o.threads, cache, &n);
   simulated += n;
@@ -77,8 +77,7 @@ std::pair<double, double> score(const field::Field& field, const Block& b, std::
 void PlannerOptions::validate() const {
   require_in_range("planner.speed_min", speed_min, 0.05, 10.0);
   require_in_range("planner.speed_max", speed_max, speed_min, 10.0);
-  if (speeds < 2 || speeds > 200)
-    throw InputError("planner.speeds: expected 2..200 launch speeds");
+  if (speeds < 2 || speeds > 200) throw InputError("planner.speeds: expected 2..200 launch speeds");
   require_in_range("planner.accept_probability", accept_probability, 0.0, 1.0);
 }
 
@@ -102,8 +101,8 @@ std::vector<Imagined> imagine(const system::System& system, std::array<double, 2
   std::vector<Imagined> out(launches.size());
   std::vector<int> todo;
   const auto key = [&](std::size_t k) {
-    return std::array<double, 6>{ball[0],        ball[1], launches[k][0], launches[k][1],
-                                 hole[0], hole[1]};
+    return std::array<double, 6>{ball[0],        ball[1], launches[k][0],
+                                 launches[k][1], hole[0], hole[1]};
   };
   for (std::size_t k = 0; k < launches.size(); ++k)
     if (cache == nullptr || !cache->find(key(k), out[k])) todo.push_back(static_cast<int>(k));
@@ -115,7 +114,8 @@ std::vector<Imagined> imagine(const system::System& system, std::array<double, 2
                          r.angle = launches[k][0];
                          r.speed = launches[k][1];
                          r.start = ball;
-                         const sim::PuttOutcome p = sim::simulate_putt(world, data.ball.get(), hole, r);
+                         const sim::PuttOutcome p =
+                             sim::simulate_putt(world, data.ball.get(), hole, r);
                          Imagined m;
                          m.sunk = p.sunk;
                          m.left_lane = p.end == sim::PuttEnd::kLeftLane;
@@ -124,7 +124,8 @@ std::vector<Imagined> imagine(const system::System& system, std::array<double, 2
                          out[k] = m;
                        });
   if (cache != nullptr)
-    for (int k : todo) cache->store(key(static_cast<std::size_t>(k)), out[static_cast<std::size_t>(k)]);
+    for (int k : todo)
+      cache->store(key(static_cast<std::size_t>(k)), out[static_cast<std::size_t>(k)]);
   if (simulated != nullptr) *simulated = static_cast<int>(todo.size());
   return out;
 }
@@ -214,7 +215,8 @@ StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
     for (std::size_t i = 0; i < c.angles.size(); ++i) {
       if (std::abs(wrap(c.angles[i] - direct)) < kDirectSpan) continue;
       double m = std::numeric_limits<double>::infinity();
-      for (std::size_t j = 0; j < c.speeds.size(); ++j) m = std::min(m, c.at(i, j).closest_approach);
+      for (std::size_t j = 0; j < c.speeds.size(); ++j)
+        m = std::min(m, c.at(i, j).closest_approach);
       near.push_back({m, c.angles[i]});
     }
     std::sort(near.begin(), near.end());

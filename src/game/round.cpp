@@ -72,9 +72,12 @@ bool on_lane(const field::Field& f, std::array<double, 2> p) {
 
 std::string to_string(Player player) {
   switch (player) {
-    case Player::kRobot: return "robot";
-    case Player::kOracle: return "oracle";
-    case Player::kGreedy: return "greedy";
+    case Player::kRobot:
+      return "robot";
+    case Player::kOracle:
+      return "oracle";
+    case Player::kGreedy:
+      return "greedy";
   }
   return "?";
 }
@@ -88,8 +91,8 @@ Player parse_player(const std::string& text, const std::string& what) {
 
 void RoundOptions::validate() const {
   if (calibration_putts < 1 || calibration_putts > 50)
-    throw InputError(fmt::format("budget: expected 1..50 learning putts per field, got {}",
-                                 calibration_putts));
+    throw InputError(
+        fmt::format("budget: expected 1..50 learning putts per field, got {}", calibration_putts));
   require_in_range("vision_noise", vision_noise, 0.0, 0.05);
   planner.validate();
 }
@@ -112,8 +115,10 @@ std::array<double, 2> replace_ball(const field::Field& field, std::array<double,
     double gx = o->distance({p[0] + h, p[1]}) - o->distance({p[0] - h, p[1]});
     double gy = o->distance({p[0], p[1] + h}) - o->distance({p[0], p[1] - h});
     const double g = std::hypot(gx, gy);
-    if (!(g > 0)) gx = 1.0, gy = 0.0;
-    else gx /= g, gy /= g;
+    if (!(g > 0))
+      gx = 1.0, gy = 0.0;
+    else
+      gx /= g, gy /= g;
     p = {std::clamp(p[0] + gx * (m - worst + 1e-3), b[0] + m, b[1] - m),
          std::clamp(p[1] + gy * (m - worst + 1e-3), b[2] + m, b[3] - m)};
   }
@@ -121,8 +126,7 @@ std::array<double, 2> replace_ball(const field::Field& field, std::array<double,
 }
 
 RoundResult play_round(const Course& course, const control::ModuleConfig& config,
-                       const plant::Plant& plant, const RoundOptions& options,
-                       ImaginedCache* cache,
+                       const plant::Plant& plant, const RoundOptions& options, ImaginedCache* cache,
                        const std::function<void(int, const StrokeRecord&)>& on_stroke) {
   options.validate();
   RoundResult result;
@@ -185,21 +189,21 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         const double direct = std::atan2(hole[1] - seen[1], hole[0] - seen[0]);
         std::vector<std::array<double, 2>> launches;
         const double q = std::pow(po.speed_max / po.speed_min, 1.0 / (po.speeds - 1));
-        for (int j = 0; j < po.speeds; ++j) launches.push_back({direct, po.speed_min * std::pow(q, j)});
+        for (int j = 0; j < po.speeds; ++j)
+          launches.push_back({direct, po.speed_min * std::pow(q, j)});
         int n = 0;
         const auto out = imagine(*w.belief, seen, hole, launches, po.threads, cache, &n);
         result.imagined_putts += n;
         double best = 1e9;
         for (std::size_t j = 0; j < out.size(); ++j) {
-          const double e = out[j].sunk ? -1.0
-                                       : std::hypot(out[j].rest[0] - hole[0], out[j].rest[1] - hole[1]);
+          const double e =
+              out[j].sunk ? -1.0 : std::hypot(out[j].rest[0] - hole[0], out[j].rest[1] - hole[1]);
           if (e < best) best = e, plan.angle = direct, plan.speed = launches[j][1];
         }
       } else {
         const bool oracle = options.player == Player::kOracle;
         LaunchError err;
-        if (!oracle)
-          err = {std::max(0.004, skill.angle_std), std::max(0.02, skill.speed_std)};
+        if (!oracle) err = {std::max(0.004, skill.angle_std), std::max(0.02, skill.speed_std)};
         plan = plan_stroke(oracle ? *w.truth : *w.belief, seen, hole, err, po, cache);
         result.imagined_putts += plan.imagined_putts;
       }
@@ -210,8 +214,8 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
 
       sim::PuttOutcome out;
       if (!uses_arm) {
-        out = system::ball_putt(*w.truth, *w.data, hole, plan.angle, plan.speed, kPathInterval,
-                                ball);
+        out =
+            system::ball_putt(*w.truth, *w.data, hole, plan.angle, plan.speed, kPathInterval, ball);
       } else {
         control::FullPuttOptions o;
         o.seed = derive_seed(options.seed, 3000 + h * 64 + static_cast<std::uint64_t>(hr.strokes));

@@ -31,8 +31,8 @@ Player parse_player(const std::string& text, const std::string& what);
 struct RoundOptions {
   Player player = Player::kRobot;
   std::uint64_t seed = 0;
-  int calibration_putts = 6;     ///< per field: the robot's learning putts (1..50)
-  double vision_noise = 0.002;   ///< [m] std per axis of the robot's view of the ball per stroke
+  int calibration_putts = 6;    ///< per field: the robot's learning putts (1..50)
+  double vision_noise = 0.002;  ///< [m] std per axis of the robot's view of the ball per stroke
   PlannerOptions planner;
   void validate() const;
 };
@@ -43,7 +43,7 @@ struct StrokeRecord {
   double speed = 0.0;                ///< [m/s] planned launch speed
   std::array<double, 2> rest{0, 0};  ///< where it stopped (or left the lane) [m]
   bool sunk = false;
-  bool left_lane = false;  ///< a penalty stroke follows
+  bool left_lane = false;         ///< a penalty stroke follows
   double sink_probability = 0.0;  ///< the plan's
   bool bank = false;
   std::vector<std::array<double, 2>> path;  ///< the ball's path (10 ms apart)
@@ -63,8 +63,8 @@ struct RoundResult {
   std::vector<HoleResult> holes;
   int total_strokes = 0;
   int total_par = 0;
-  int learning_putts = 0;   ///< the robot's calibration putts, over all fields
-  int imagined_putts = 0;   ///< ball-only putts simulated by the planner
+  int learning_putts = 0;  ///< the robot's calibration putts, over all fields
+  int imagined_putts = 0;  ///< ball-only putts simulated by the planner
 };
 
 /// Plays `course` on `plant` (the true world; empty: the field files). `config` is the module
