@@ -106,5 +106,6 @@ void bind_system(
 void bind_learners(
     py::module_& m);  ///< Model, train, load_dataset, HittingModel (learner_bindings.cpp)
 void bind_render(py::module_& m);  ///< Renderer (render_bindings.cpp)
+void bind_game(py::module_& m);    ///< play, courses (game_bindings.cpp)
 
 }  // namespace mg::python

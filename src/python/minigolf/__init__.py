@@ -26,8 +26,10 @@ from ._minigolf import (  # noqa: F401
     SystemData,
     Renderer,
     World,
+    courses,
     load_dataset,
     mpi_built,
+    play,
     train,
 )
 
