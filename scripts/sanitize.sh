@@ -26,7 +26,7 @@ if [[ $what == ci ]]; then
   # -O1 -g: the sanitizers' usual build, faster to compile than RelWithDebInfo's -O2.
   cmake -S . -B build-asan-ci -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-O1 -g" \
     -DMINIGOLF_BUILD_BENCHMARKS=OFF "${launcher[@]}" "${asan_flags[@]}" >/dev/null
-  targets=(minigolf test_core test_field test_plant test_learning test_perception test_system test_cli)
+  targets=(minigolf test_core test_field test_plant test_learning test_perception test_system test_game test_cli)
   for h in fuzz/*.cpp; do
     case $(basename "$h" .cpp) in replay_main|scratch) ;; *) targets+=("fuzz_$(basename "$h" .cpp)") ;; esac
   done
@@ -36,7 +36,7 @@ if [[ $what == ci ]]; then
   export LSAN_OPTIONS="suppressions=$PWD/scripts/sanitize.supp:print_suppressions=0"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
   suites='Csv|Io|IoSignals|Surface|Field|Situations|Plant|LearningDataset|LearningModel|LearningCli'
-  suites+='|VisionMessage|Udp|VisionFeed|NetworkPerception|Session|Robustness|ConsoleCommand|FieldCommand|PlantCommands'
+  suites+='|VisionMessage|Udp|VisionFeed|NetworkPerception|Session|Robustness|ConsoleCommand|FieldCommand|PlantCommands|Course'
   (cd build-asan-ci && nice -n 10 ctest -j"$jobs" --output-on-failure --timeout 1200 -R "^(($suites)\.|fuzz_)" \
      -E '_NOT_BUILT$')
   echo "sanitize.sh: ci (ASan + UBSan, parsers, session, fuzz replays): build $((built - start)) s," \
