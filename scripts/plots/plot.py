@@ -5,7 +5,10 @@
   plot.py model OUT.png --predictions P.csv --train T.csv [--validation V.csv] --output NAME
           [--inputs a,b] [--title T]
   plot.py dataset DATA.csv OUT.png [--validation V.csv] [--title T]
-  plot.py field HEIGHTS.csv OUT.png [--trajectory T.csv ...] [--hole X,Y ...] [--tee X,Y] [--title T]
+  plot.py field HEIGHTS.csv OUT.png [--trajectory T.csv ...] [--hole X,Y ...] [--tee X,Y]
+          [--hole-diameter D] [--obstacles O.csv] [--title T]
+  plot.py round HEIGHTS.csv STROKES.csv OUT.png --hole=X,Y [--paths PATHS.csv]
+          [--hole-diameter D] [--tee X,Y] [--obstacles O.csv] [--title T]
   plot.py learning-curve CURVE.csv OUT.png [--xlabel TEXT] [--percent] [--title T]
   plot.py success TABLE.csv OUT.png [--title T]
   plot.py launch-error IN.csv OUT.png

@@ -1,8 +1,9 @@
-// plot ds | strength | field | model: figures of the models (thesis figs 2.2-2.4, 5.4b, 6.3-6.9).
+// plot ds | strength | field | model: figures of the models (thesis figs 2.2-2.4, 5.4b, 6.3-6.9);
+// plot round: a round of minigolf played, one figure per hole.
 //
 // Each exports the numbers it needs as CSV (a temporary folder, or --data-dir to keep them) and
-// draws them with scripts/plots/plot.py (/usr/bin/python3, matplotlib): one PNG. A missing or
-// malformed input: one line, exit 2.
+// draws them with scripts/plots/plot.py (/usr/bin/python3, matplotlib): one PNG (plot round: one
+// per hole). A missing or malformed input: one line, exit 2.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,12 +15,15 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "ds/demonstrations.hpp"
 #include "ds/hitting_model.hpp"
+#include "game/round.hpp"
 #include "system/system.hpp"
 #include "viz/figure_data.hpp"
+#include "viz/round_figure.hpp"
 
 namespace mg::cli {
 
@@ -171,13 +175,17 @@ void add_plot_field(CLI::App* plot) {
       const auto t = dir.write(fmt::format("field_path_{}.csv", k), viz::trajectory_csv(out));
       args += fmt::format(" --trajectory {}", shell_quote(t.string()));
     }
+    if (!f.obstacles.empty())
+      args += " --obstacles " +
+              shell_quote(dir.write("field_obstacles.csv", viz::obstacles_csv(f)).string());
     run_plot_script(
-        fmt::format("field {} {}{} --hole={},{} --tee={},{} --title {}",
+        fmt::format("field {} {}{} --hole={},{} --hole-diameter {} --tee={},{} --title {}",
                     shell_quote(heights.string()), shell_quote(a->out), args, hole[0], hole[1],
-                    f.tee[0], f.tee[1],
+                    f.hole.diameter, f.tee[0], f.tee[1],
                     shell_quote(fmt::format("{}: height map and ball-only paths", f.name))),
         a->out);
-    fmt::print("wrote {} ({} ball paths)\n", a->out, shots.size());
+    fmt::print("wrote {} ({} ball paths, {} obstacles)\n", a->out, shots.size(),
+               f.obstacles.size());
   });
 }
 
@@ -226,16 +234,82 @@ void add_plot_model(CLI::App* plot) {
   });
 }
 
+void add_plot_round(CLI::App* plot) {
+  struct Args {
+    std::string course, player = "robot", out, stem, data_dir;
+    std::uint64_t seed = 0;
+    int seeds = 1, budget = 6;
+    SystemArgs system;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = plot->add_subcommand(
+      "round", "A round of minigolf played: every hole's ball paths over its field, one PNG each");
+  cmd->add_option("--course", a->course, "Shipped course name or path to a course file")
+      ->required();
+  cmd->add_option("--player", a->player, "robot (the arm, its own model), oracle or greedy")
+      ->check(CLI::IsMember({"robot", "oracle", "greedy"}))
+      ->capture_default_str();
+  cmd->add_option("--seed", a->seed, "Seed of the first round")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  cmd->add_option("--seeds", a->seeds, "Rounds, seeds from --seed on, drawn together")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  cmd->add_option("--budget", a->budget, "The robot's learning putts per field (1..50)")
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
+  cmd->add_option("--stem", a->stem, "File names STEM-hole<K>.png (default: the course's name)");
+  cmd->add_option("-o,--output", a->out, "Folder for the PNGs (made when missing)")->required();
+  cmd->add_option("--data-dir", a->data_dir, "Keep the exported CSV files here");
+  cmd->add_option("--config", a->system.config, "Module config YAML");
+  cmd->add_option("--hitting-model", a->system.hitting_model,
+                  "Hitting DS model file (default: the shipped one)");
+  cmd->add_option("--plant", a->system.plant, kPlantHelp);
+  cmd->add_option("--threads", a->system.threads,
+                  "Threads (0: all cores; results do not depend on it)")
+      ->check(CLI::Range(0, 256))
+      ->capture_default_str();
+  cmd->callback([a] {
+    const game::Course course = game::load_course(a->course);
+    game::RoundOptions o;
+    o.player = game::parse_player(a->player, "--player");
+    o.calibration_putts = a->budget;
+    o.planner.threads = a->system.threads;
+    o.validate();
+    const std::string stem = a->stem.empty() ? course.name : a->stem;
+    if (stem.find('/') != std::string::npos)
+      throw InputError(fmt::format("--stem '{}': expected a file name without '/'", stem));
+    ensure_output_dir(a->out);  // before the rounds: a bad folder fails fast
+    const auto config = system::load_config(a->system.config, "", a->system.hitting_model);
+    const plant::Plant plant = load_plant_arg(a->system.plant);
+    game::ImaginedCache cache;  // shared by the seeds: the same imagined putts are not repeated
+    std::vector<game::RoundResult> rounds;
+    Progress progress(fmt::format("plot round {} ({})", course.name, a->player), a->seeds);
+    for (int s = 0; s < a->seeds; ++s) {
+      o.seed = a->seed + static_cast<std::uint64_t>(s);
+      rounds.push_back(game::play_round(course, config, plant, o, &cache));
+      progress.update(s + 1);
+    }
+    progress.finish();
+    const auto pngs = viz::plot_round_holes(course, rounds, a->out, stem, a->data_dir);
+    for (std::size_t h = 0; h < pngs.size(); ++h)
+      fmt::print("wrote {} (hole {}: {}, par {}, {:.2f} strokes over {} round{})\n",
+                 pngs[h].string(), h + 1, course.holes[h].field.name, course.holes[h].par,
+                 viz::mean_hole_strokes(rounds, h), rounds.size(), rounds.size() == 1 ? "" : "s");
+  });
+}
+
 }  // namespace
 
 void add_plot_commands(CLI::App& app) {
-  CLI::App* plot =
-      app.add_subcommand("plot", "Figures of the models: ds | strength | field | model");
+  CLI::App* plot = app.add_subcommand(
+      "plot", "Figures of the models and rounds: ds | strength | field | model | round");
   plot->require_subcommand(1);
   add_plot_ds(plot);
   add_plot_strength(plot);
   add_plot_field(plot);
   add_plot_model(plot);
+  add_plot_round(plot);
 }
 
 }  // namespace mg::cli

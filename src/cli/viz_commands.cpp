@@ -4,8 +4,11 @@
 //                 [--camera NAME] [--size WxH] [--screenshot PNG]
 //   minigolf render --field F [--config FILE] [--hole X,Y] (--angle RAD --speed M/S | --model M)
 //                   [--camera NAME] [--size WxH] [--fps N] [--no-video] -o OUT
+//   minigolf render --course C [--hole K] [--player P] [--seed S] [--budget N] [--plant P]
+//                   [--config FILE] [--camera NAME] [--size WxH] [--fps N] [--no-video] -o OUT
 //
 // Both need a display or `xvfb-run -a` (docs/viz.md); without one: one line, exit 1.
+#include <initializer_list>
 #include <iostream>
 #include <memory>
 
@@ -13,9 +16,12 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "cli/progress.hpp"
 #include "core/error.hpp"
+#include "game/round.hpp"
 #include "system/system.hpp"
 #include "viz/render_hit.hpp"
+#include "viz/render_round.hpp"
 #include "viz/renderer.hpp"
 #include "viz/viewer.hpp"
 
@@ -79,30 +85,135 @@ void add_view(CLI::App& app) {
   });
 }
 
+struct RenderArgs {
+  std::string config, field, hole, model, camera = "overview", size = "640x480", out;
+  std::optional<double> angle, speed;
+  double fps = 30.0;
+  bool no_video = false;
+  // --course: the film of one hole of a round.
+  std::string course, player = "robot", plant;
+  std::uint64_t seed = 0;
+  int budget = 6;
+  bool camera_given = false;
+};
+
+/// render --course: plays the round up to the hole (game::play_round; the holes before it are
+/// played too, so the hole is the one `play` plays with the seed) and films the hole's strokes.
+void render_course(const RenderArgs& a) {
+  const game::Course course = game::load_course(a.course);
+  const std::size_t n = course.holes.size();
+  std::uint64_t k = 1;
+  if (!a.hole.empty()) {
+    if (a.hole.find(',') != std::string::npos)
+      throw InputError(
+          fmt::format("--hole '{}': with --course, the hole's number 1..{}", a.hole, n));
+    k = parse_unsigned("--hole", a.hole);
+  }
+  if (k < 1 || k > n)
+    throw InputError(fmt::format("--hole {}: course {} has holes 1..{}", k, course.name, n));
+  game::RoundOptions o;
+  o.player = game::parse_player(a.player, "--player");
+  o.seed = a.seed;
+  o.calibration_putts = a.budget;
+  o.validate();
+  const std::string camera = a.camera_given ? a.camera : "top";
+  check_camera(camera);
+  const auto size = parse_size(a.size);
+  viz::RenderOptions ro;
+  ro.camera = camera;
+  ro.width = size[0];
+  ro.height = size[1];
+  ro.fps = a.fps;
+  ro.video = !a.no_video;
+  if (ro.width % 2 != 0 || ro.height % 2 != 0)
+    throw InputError(fmt::format("--size {}: width and height must be even (video)", a.size));
+  if (!(a.fps >= 1.0 && a.fps <= 240.0))
+    throw InputError(fmt::format("render: --fps {}: expected 1..240", a.fps));
+  std::string stem = a.out;
+  if (stem.size() > 4 && stem.substr(stem.size() - 4) == ".mp4") stem.resize(stem.size() - 4);
+  viz::check_render_outputs(stem);
+  const control::ModuleConfig config = system::load_config(a.config, "");
+  const plant::Plant plant = load_plant_arg(a.plant);
+  const game::CourseHole& ch = course.holes[k - 1];
+  const system::System sys(config, ch.field);              // its ball world is drawn
+  viz::GlWindow window(64, 64, false, "minigolf render");  // before the round: no display fails
+  game::Course upto = course;
+  upto.holes.resize(k);
+  game::ImaginedCache cache;
+  Progress progress(fmt::format("render {} hole {} ({})", course.name, k, a.player),
+                    static_cast<int>(k));
+  const game::RoundResult round = game::play_round(
+      upto, config, plant, o, &cache,
+      [&](int h, const game::StrokeRecord& s) { progress.update(h + (s.sunk ? 1 : 0)); });
+  progress.finish();
+  const game::HoleResult& hole = round.holes.back();
+  const auto frames =
+      viz::hole_film_frames(sys.ball_world().field(), hole, static_cast<int>(k), a.fps);
+  const viz::RenderOutputs out = viz::render_hole_film(sys.ball_world(), hole, frames, ro, stem);
+  fmt::print("hole {} of {} ({}, par {}), {}: {} stroke{}, {}\n", k, course.name, ch.field.name,
+             ch.par, a.player, hole.strokes, hole.strokes == 1 ? "" : "s",
+             hole.sunk ? "sunk" : "not sunk");
+  fmt::print("filmstrip: {} ({} stroke{})\n", out.filmstrip.string(), hole.putts.size(),
+             hole.putts.size() == 1 ? "" : "s");
+  if (ro.video)
+    fmt::print("video: {} ({} frames, {}x{}, {:g} fps{})\n", out.video.string(), out.frames,
+               ro.width, ro.height, ro.fps,
+               out.used_ffmpeg ? "" : "; PNG frames: ffmpeg not found");
+}
+
 void add_render(CLI::App& app) {
-  struct Args {
-    std::string config, field, hole, model, camera = "overview", size = "640x480", out;
-    std::optional<double> angle, speed;
-    double fps = 30.0;
-    bool no_video = false;
-  };
-  auto a = std::make_shared<Args>();
+  auto a = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "render", "Render one hit off-screen: an MP4 and a filmstrip of its stages");
+      "render",
+      "Render one hit off-screen (or, with --course, one hole of a round): an MP4 and a "
+      "filmstrip");
   cmd->add_option("--config", a->config, "Module config YAML");
   cmd->add_option("--field", a->field, "Shipped field name or path (overrides the config)");
-  cmd->add_option("--hole", a->hole, "Hole centre X,Y [m] (default: the field's)");
+  cmd->add_option("--hole", a->hole,
+                  "Hole centre X,Y [m] (default: the field's); with --course: the hole's number "
+                  "K (default 1)");
   cmd->add_option("--angle", a->angle, "Hitting angle [rad]");
   cmd->add_option("--speed", a->speed, "Club speed [m/s]");
   cmd->add_option("--model", a->model, "Parameter model: angle and speed from `auto`");
-  cmd->add_option("--camera", a->camera, "overview | side | top | follow")->capture_default_str();
+  cmd->add_option(
+      "--course", a->course,
+      "Film one hole of a round on this course (shipped name or path): the ball's strokes");
+  cmd->add_option("--player", a->player, "With --course: robot, oracle or greedy")
+      ->check(CLI::IsMember({"robot", "oracle", "greedy"}))
+      ->capture_default_str();
+  cmd->add_option("--seed", a->seed, "With --course: the round's seed")
+      ->check(unsigned_integer())
+      ->capture_default_str();
+  cmd->add_option("--budget", a->budget, "With --course: the robot's learning putts per field")
+      ->check(CLI::Range(1, 50))
+      ->capture_default_str();
+  cmd->add_option("--plant", a->plant, std::string(kPlantHelp) + " (with --course)");
+  cmd->add_option("--camera", a->camera,
+                  "overview | side | top | follow (with --course, default top)")
+      ->capture_default_str();
   cmd->add_option("--size", a->size, "Image size WxH [pixels], even")->capture_default_str();
   cmd->add_option("--fps", a->fps, "Video frames per simulated second")->capture_default_str();
   cmd->add_flag("--no-video", a->no_video, "The filmstrip only");
   cmd->add_option("-o,--output", a->out,
                   "Output stem: OUT.mp4 (or OUT-frames/) and OUT-filmstrip.png")
       ->required();
-  cmd->callback([a] {
+  cmd->callback([a, cmd] {
+    const auto given = [&](std::initializer_list<const char*> names) {
+      for (const char* n : names)
+        if (cmd->count(n) > 0) return true;
+      return false;
+    };
+    if (given({"--course"})) {
+      if (given({"--field", "--angle", "--speed", "--model"}))
+        throw InputError(
+            "render --course: films the round's own strokes; --field, --angle, --speed and "
+            "--model are for one hit");
+      a->camera_given = given({"--camera"});
+      render_course(*a);
+      return;
+    }
+    if (given({"--player", "--seed", "--budget", "--plant"}))
+      throw InputError("render: --player, --seed, --budget and --plant go with --course");
     const control::ModuleConfig config = system::load_config(a->config, a->field);
     check_camera(a->camera);
     const auto size = parse_size(a->size);

@@ -21,6 +21,7 @@
 #include "experiments/collect.hpp"
 #include "experiments/evaluate.hpp"
 #include "experiments/real_robot.hpp"
+#include "experiments/round_study.hpp"
 #include "experiments/sweep.hpp"
 #include "experiments/wire.hpp"
 #include "learning/dataset.hpp"
@@ -620,6 +621,26 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
                                     sys.config().speed_min, sys.config().speed_max}}});
   }
 
+  std::string rounds_md;  // beyond the thesis: a round of minigolf
+  const int round_seeds = opt.round_seeds >= 0 ? opt.round_seeds : (opt.quick ? 3 : 20);
+  if (opt.beyond && round_seeds > 0) {
+    RoundStudyOptions ro;
+    ro.seeds = round_seeds;
+    ro.seed = opt.seed;
+    ro.threads = opt.threads;
+    ro.config = opt.config;
+    ro.plant = opt.plant;
+    ro.plots = opt.plots;
+    rounds_md =
+        "\n## Beyond the thesis: a round of minigolf\n\n"
+        "Every shipped course, hole after hole from wherever the ball lies (docs/round.md). "
+        "**robot**: plans in its own model of each field and hits with the arm (full system), "
+        "its launch skill learned from its own putts on each field; **oracle**: plans in the "
+        "true world with exact execution, ball-only putts (the best this planner can do); "
+        "**greedy**: aims the arm at the hole. Strokes include penalties; a hole ends at "
+        "`max_strokes`. Every stroke: `rounds.csv`.\n\n" +
+        round_study(ro, opt.out, say).markdown;
+  }
   write_file_atomic(opt.out / "csv" / "success.csv", success_csv);
   plot(fmt::format(
            "success {} {} --title {}", shell_quote(csv_path("success.csv")),
@@ -741,6 +762,7 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
         "|---|---|---|---|---|---|---|---|\n" +
         real_md["curves"] + "\n" + real_md["figures"];
   }
+  report += rounds_md;
   report += "\n## Figures\n\n" + figures_md;
   write_file_atomic(opt.out / "report.md", report);
   say(fmt::format("report written to {}", (opt.out / "report.md").string()));

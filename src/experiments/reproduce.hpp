@@ -31,6 +31,10 @@ struct ReproduceOptions {
   std::string real_robot_plant;
   /// A plant for the whole run (`--plant`): every putt happens in it (empty: the robot's model).
   std::string plant;
+  /// The round of minigolf (beyond the thesis, docs/round.md): every shipped course by the robot,
+  /// the oracle planner and the greedy player over this many seeds (0: skipped; default: 20, 3
+  /// with `quick`).
+  int round_seeds = -1;
 };
 
 /// Runs everything; `log` gets one line per step (progress). Throws InputError/IoError naming a

@@ -142,6 +142,28 @@ std::string heights_csv(const field::Field& f) {
   return format_csv({"x", "y", "z"}, rows);
 }
 
+std::array<std::array<double, 2>, 4> footprint_corners(const field::Obstacle& obstacle) {
+  const field::Footprint fp = obstacle.footprint();
+  const double c = std::cos(fp.yaw), s = std::sin(fp.yaw);
+  std::array<std::array<double, 2>, 4> out{};
+  const int signs[4][2] = {{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  for (int k = 0; k < 4; ++k) {
+    const double u = signs[k][0] * fp.half[0], v = signs[k][1] * fp.half[1];
+    out[static_cast<std::size_t>(k)] = {fp.center[0] + c * u - s * v, fp.center[1] + s * u + c * v};
+  }
+  return out;
+}
+
+std::string obstacles_csv(const field::Field& f) {
+  std::vector<std::vector<double>> rows;
+  for (std::size_t k = 0; k < f.obstacles.size(); ++k) {
+    const double block = f.obstacles[k].type == field::ObstacleType::kBlock ? 1.0 : 0.0;
+    for (const auto& p : footprint_corners(f.obstacles[k]))
+      rows.push_back({static_cast<double>(k), block, p[0], p[1]});
+  }
+  return format_csv({"obstacle", "block", "x", "y"}, rows);
+}
+
 std::string trajectory_csv(const sim::PuttOutcome& o) {
   std::vector<std::vector<double>> rows;
   for (const auto& s : o.trajectory) rows.push_back({s.t, s.x, s.y, s.z, s.vx, s.vy, s.vz});

@@ -42,6 +42,11 @@ std::string modulators_csv(const ds::HittingModel& model,
 
 /// x,y,z: the field's height on a 2 cm grid.
 std::string heights_csv(const field::Field& field);
+/// The corners of an obstacle's footprint [m, world], counter-clockwise.
+std::array<std::array<double, 2>, 4> footprint_corners(const field::Obstacle& obstacle);
+/// obstacle,block,x,y: every obstacle's footprint corners (4 rows each, counter-clockwise;
+/// block 1 for a block, 0 for a wall). Header only for a field without obstacles.
+std::string obstacles_csv(const field::Field& field);
 /// t,x,y,z,vx,vy,vz of a ball-only putt sampled every 10 ms.
 std::string trajectory_csv(const sim::PuttOutcome& outcome);
 

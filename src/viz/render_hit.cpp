@@ -204,6 +204,63 @@ std::filesystem::path find_ffmpeg() {
   return {};
 }
 
+VideoOutput write_video(const std::filesystem::path& out, int width, int height, double fps,
+                        int count, const std::function<Image(int)>& frame) {
+  const auto checked = [&](int k) {
+    Image img = frame(k);
+    if (img.width != width || img.height != height)
+      throw Error(fmt::format("video: frame {} is {}x{}, expected {}x{}", k, img.width, img.height,
+                              width, height));
+    return img;
+  };
+  VideoOutput result;
+  const std::string stem = out.string();
+  const std::filesystem::path ffmpeg = find_ffmpeg();
+  if (ffmpeg.empty()) {
+    result.path = stem + "-frames";
+    std::filesystem::create_directories(result.path);
+    for (int k = 0; k < count; ++k) {
+      write_png(result.path / fmt::format("frame-{:05d}.png", k), checked(k));
+      ++result.frames;
+    }
+    return result;
+  }
+  result.path = stem + ".mp4";
+  const std::string tmp = stem + ".tmp.mp4";
+  const std::string cmd = fmt::format(
+      "{} -loglevel error -y -f rawvideo -pix_fmt rgb24 -s {}x{} -r {} -i - -an -c:v libx264 "
+      "-pix_fmt yuv420p -movflags +faststart -f mp4 {}",
+      shell_quote(ffmpeg.string()), width, height, fps, shell_quote(tmp));
+  FILE* pipe = ::popen(cmd.c_str(), "w");
+  if (!pipe) throw IoError("render: cannot start ffmpeg");
+  bool ok = true;
+  try {
+    for (int k = 0; k < count; ++k) {
+      const Image img = checked(k);
+      if (std::fwrite(img.rgb.data(), 1, img.rgb.size(), pipe) != img.rgb.size()) {
+        ok = false;
+        break;
+      }
+      ++result.frames;
+    }
+  } catch (...) {
+    ::pclose(pipe);
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
+  const int status = ::pclose(pipe);
+  if (!ok || status != 0) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw IoError(fmt::format("render: ffmpeg failed writing {} (exit status {})",
+                              result.path.string(), status));
+  }
+  std::filesystem::rename(tmp, result.path);
+  result.used_ffmpeg = true;
+  return result;
+}
+
 RenderOutputs render_hit(const sim::World& world, const HitRecording& rec,
                          const RenderOptions& options, const std::filesystem::path& out) {
   if (options.width % 2 != 0 || options.height % 2 != 0)
@@ -238,57 +295,22 @@ RenderOutputs render_hit(const sim::World& world, const HitRecording& rec,
   write_png(result.filmstrip, filmstrip(stills));
 
   if (!options.video) return result;
-  const std::filesystem::path ffmpeg = find_ffmpeg();
-  const auto frame_text = [&](const Pose& p) {
-    return fmt::format("t={:.2f} s  angle {:.3f} rad  speed {:.2f} m/s", p.time, rec.angle,
-                       rec.speed);
-  };
   deco.aim_angle.reset();
-  if (!ffmpeg.empty()) {
-    result.video = stem + ".mp4";
-    const std::string tmp = stem + ".tmp.mp4";
-    const std::string cmd = fmt::format(
-        "{} -loglevel error -y -f rawvideo -pix_fmt rgb24 -s {}x{} -r {} -i - -an -c:v libx264 "
-        "-pix_fmt yuv420p -movflags +faststart -f mp4 {}",
-        shell_quote(ffmpeg.string()), options.width, options.height, options.fps, shell_quote(tmp));
-    FILE* pipe = ::popen(cmd.c_str(), "w");
-    if (!pipe) throw IoError("render: cannot start ffmpeg");
-    bool ok = true;
-    for (const auto& pose : rec.frames) {
-      renderer.set_pose(pose);
-      if (options.camera == "follow")
-        camera = camera_preset(options.camera, world, renderer.data());
-      deco.label = frame_text(pose);
-      deco.path = path_until(pose.time);
-      const Image img = renderer.render(camera, deco);
-      if (std::fwrite(img.rgb.data(), 1, img.rgb.size(), pipe) != img.rgb.size()) {
-        ok = false;
-        break;
-      }
-      ++result.frames;
-    }
-    const int status = ::pclose(pipe);
-    if (!ok || status != 0) {
-      std::filesystem::remove(tmp);
-      throw IoError(fmt::format("render: ffmpeg failed writing {} (exit status {})",
-                                result.video.string(), status));
-    }
-    std::filesystem::rename(tmp, result.video);
-    result.used_ffmpeg = true;
-  } else {
-    result.video = stem + "-frames";
-    std::filesystem::create_directories(result.video);
-    for (const auto& pose : rec.frames) {
-      renderer.set_pose(pose);
-      if (options.camera == "follow")
-        camera = camera_preset(options.camera, world, renderer.data());
-      deco.label = frame_text(pose);
-      deco.path = path_until(pose.time);
-      write_png(result.video / fmt::format("frame-{:05d}.png", result.frames),
-                renderer.render(camera, deco));
-      ++result.frames;
-    }
-  }
+  const VideoOutput video =
+      write_video(out, options.width, options.height, options.fps,
+                  static_cast<int>(rec.frames.size()), [&](int k) {
+                    const Pose& pose = rec.frames[static_cast<std::size_t>(k)];
+                    renderer.set_pose(pose);
+                    if (options.camera == "follow")
+                      camera = camera_preset(options.camera, world, renderer.data());
+                    deco.label = fmt::format("t={:.2f} s  angle {:.3f} rad  speed {:.2f} m/s",
+                                             pose.time, rec.angle, rec.speed);
+                    deco.path = path_until(pose.time);
+                    return renderer.render(camera, deco);
+                  });
+  result.video = video.path;
+  result.frames = video.frames;
+  result.used_ffmpeg = video.used_ffmpeg;
   return result;
 }
 

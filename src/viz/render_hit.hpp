@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,5 +82,18 @@ void check_render_outputs(const std::filesystem::path& out);
 
 /// ffmpeg on the PATH, or empty.
 std::filesystem::path find_ffmpeg();
+
+struct VideoOutput {
+  std::filesystem::path path;  ///< the MP4, or the folder of PNG frames
+  int frames = 0;
+  bool used_ffmpeg = false;
+};
+
+/// Writes `count` frames of `width` x `height` pixels, `frame(k)` drawing the k-th: OUT.mp4
+/// (H.264 through ffmpeg, frames piped as raw RGB, written to OUT.tmp.mp4 and renamed) or, where
+/// ffmpeg is not on the PATH, OUT-frames/frame-NNNNN.png. `out` is the stem. IoError if ffmpeg
+/// fails; Error if a frame has another size.
+VideoOutput write_video(const std::filesystem::path& out, int width, int height, double fps,
+                        int count, const std::function<Image(int)>& frame);
 
 }  // namespace mg::viz

@@ -121,6 +121,33 @@ def trajectory(path, angle=0.1):
 
 
 @pytest.fixture
+def obstacles_csv(tmp_path):
+    """A block (0.3 x 0.5 m at (1, 0)) and a wall, their footprints' corners counter-clockwise."""
+    return write_csv(tmp_path / "obstacles.csv", ["obstacle", "block", "x", "y"],
+                     [[0, 1, 1.15, 0.25], [0, 1, 0.85, 0.25], [0, 1, 0.85, -0.25],
+                      [0, 1, 1.15, -0.25], [1, 0, 1.5, 0.44], [1, 0, 0.5, 0.44],
+                      [1, 0, 0.5, 0.40], [1, 0, 1.5, 0.40]])
+
+
+@pytest.fixture
+def round_csvs(tmp_path):
+    """Three rounds of one hole: short, then holed; the third round's first ball left the lane."""
+    strokes, paths = [], []
+    for r in range(3):
+        rest = (1.5, 0.5 + 0.02 * r) if r < 2 else (2.75, 0.3)
+        strokes.append([r, 1, 0, 0, 0.3, 2.0, *rest, 0, int(r == 2)])
+        strokes.append([r, 2, *rest, -0.3, 1.5, 2.0, 0.0, 1, 0])
+        for t in np.linspace(0, 1, 20):
+            paths.append([r, 1, rest[0] * t, rest[1] * t])
+            paths.append([r, 2, rest[0] + (2.0 - rest[0]) * t, rest[1] * (1 - t)])
+    s = write_csv(tmp_path / "strokes.csv", ["round", "stroke", "ball_x", "ball_y", "angle",
+                                             "speed", "rest_x", "rest_y", "sunk", "left_lane"],
+                  strokes)
+    p = write_csv(tmp_path / "paths.csv", ["round", "stroke", "x", "y"], paths)
+    return s, p
+
+
+@pytest.fixture
 def curve_csv(tmp_path):
     rows = []
     for m, rate in (("gpr", 0.3), ("gmr", 0.15)):
@@ -193,6 +220,24 @@ def test_field(tmp_path, heights_csv):
     assert_png(r, out, ratio)
     out2 = tmp_path / "field2.png"
     assert_png(run("field", heights_csv, out2, "--hole=-0.2,0.1"), out2, ratio)
+
+
+def test_field_with_obstacles(tmp_path, heights_csv, obstacles_csv):
+    out = tmp_path / "field.png"
+    r = run("field", heights_csv, out, "--obstacles", obstacles_csv, "--hole=2.0,0",
+            "--hole-diameter", "0.108", "--tee=0,0")
+    assert_png(r, out, 10 / (0.85 * 10 * 1.2 / 3.0 + 1.3))
+
+
+def test_round(tmp_path, heights_csv, obstacles_csv, round_csvs):
+    strokes, paths = round_csvs
+    out = tmp_path / "round.png"
+    r = run("round", heights_csv, strokes, out, "--paths", paths, "--hole=2.0,0", "--tee=0,0",
+            "--obstacles", obstacles_csv, "--title", "hole 1: flat, par 2")
+    ratio = 10 / (0.85 * 10 * 1.2 / 3.0 + 1.3 - 0.1)  # field.figure_size, 0.1 in less: round.py
+    assert_png(r, out, ratio)
+    out2 = tmp_path / "round2.png"  # without paths (whiffs only) and obstacles
+    assert_png(run("round", heights_csv, strokes, out2, "--hole=2.0,0"), out2, ratio)
 
 
 def test_learning_curve(tmp_path, curve_csv):
@@ -315,6 +360,28 @@ def test_field_errors(tmp_path, heights_csv):
     assert_bad(tmp_path, lambda f, out: ("field", f, out), heights_csv, "z")
     assert_bad(tmp_path, lambda f, out: ("field", heights_csv, out, "--trajectory", f), t1, "x")
     assert_error(run("field", heights_csv, tmp_path / "x.png", "--hole", "1.0"), "--hole", "X,Y")
+
+
+def test_round_errors(tmp_path, heights_csv, obstacles_csv, round_csvs):
+    strokes, paths = round_csvs
+    hole = "--hole=2.0,0"
+    assert_bad(tmp_path, lambda f, out: ("round", heights_csv, f, out, hole), strokes, "rest_x")
+    assert_bad(tmp_path, lambda f, out: ("round", heights_csv, strokes, out, hole, "--paths", f),
+               paths, "x")
+    assert_bad(tmp_path, lambda f, out: ("round", heights_csv, strokes, out, hole,
+                                         "--obstacles", f), obstacles_csv, "y")
+    out = tmp_path / "x.png"
+    assert_error(run("round", heights_csv, strokes, out), "--hole")
+    assert_error(run("round", heights_csv, corrupt(strokes, "left_lane", "maybe"), out, hole),
+                 "'left_lane'", "maybe")
+    assert_error(run("round", heights_csv, corrupt(strokes, "stroke", "0"), out, hole),
+                 "'stroke'")
+    assert_error(run("round", heights_csv, strokes, out, hole, "--hole-diameter", "0"),
+                 "--hole-diameter")
+    two = write_csv(tmp_path / "two.csv", ["obstacle", "block", "x", "y"], [[0, 1, 0, 0],
+                                                                           [0, 1, 1, 1]])
+    assert_error(run("field", heights_csv, out, "--obstacles", two), "corners")
+    assert not out.exists()
 
 
 def test_learning_curve_errors(tmp_path, curve_csv):

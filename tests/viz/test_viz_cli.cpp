@@ -84,10 +84,72 @@ TEST(ViewCliDisplay, RenderWithoutFfmpegWritesPngFrames) {
   EXPECT_GT(frames, 10);  // 5 fps over about 3 s of simulated time
 }
 
+/// A one-hole course on the shipped flat field (the oracle plays it in a few seconds).
+std::filesystem::path tiny_course(const std::filesystem::path& dir) {
+  const auto path = dir / "tiny.yaml";
+  write(path,
+        "format_version: 1\nname: tiny\nmax_strokes: 4\n"
+        "holes: [{field: flat, tee: [0.2, 0.0], hole: [1.2, 0.1], par: 2}]\n");
+  return path;
+}
+
+TEST(ViewCliDisplay, RenderCourseFilmsTheHoleAndItsFilmstrip) {
+  MG_NEED_DISPLAY();
+  const auto dir = testing::temp_dir("render_course");
+  const auto r = run_minigolf("render --course " + q(tiny_course(dir)) +
+                              " --player oracle --size 160x120 --fps 5 -o " + q(dir / "hole"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("hole 1 of tiny (flat, par 2), oracle"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("filmstrip:"), std::string::npos) << r.out;
+  const Image strip = read_png(dir / "hole-filmstrip.png");
+  EXPECT_EQ(strip.height, 120);
+  EXPECT_EQ((strip.width + 4) % (160 + 4), 0) << strip.width;  // one picture per stroke
+  EXPECT_TRUE(std::filesystem::exists(dir / "hole.mp4") ||
+              std::filesystem::exists(dir / "hole-frames"));
+}
+
+TEST(ViewCliDisplay, RenderCourseWithoutFfmpegWritesPngFrames) {
+  MG_NEED_DISPLAY();
+  const auto dir = testing::temp_dir("render_course_frames");
+  const auto r = run_minigolf_env(
+      "env PATH=/nonexistent", "render --course " + q(tiny_course(dir)) +
+                                   " --player oracle --size 160x120 --fps 4 -o " + q(dir / "hole"));
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("ffmpeg not found"), std::string::npos) << r.out;
+  int frames = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir / "hole-frames")) {
+    EXPECT_EQ(read_png(e.path()).width, 160);
+    ++frames;
+  }
+  EXPECT_GE(frames, 3 + 2 + 1);  // aim (0.6 s), hold (0.5 s), at least one rolling frame
+  EXPECT_TRUE(std::filesystem::exists(dir / "hole-filmstrip.png"));
+}
+
+TEST(ViewCli, RenderCourseRejectsBadInputsInOneLine) {
+  const auto dir = testing::temp_dir("render_course_bad");
+  const std::string course = q(tiny_course(dir));
+  const std::string out = " -o " + q(dir / "hole");
+  for (const std::string& args :
+       {"--course nowhere" + out, "--course " + course + " --hole 2" + out,
+        "--course " + course + " --hole 0" + out, "--course " + course + " --hole 1,0" + out,
+        "--course " + course + " --player nobody" + out,
+        "--course " + course + " --angle 0 --speed 1" + out,
+        "--course " + course + " --field flat" + out, "--field flat --player oracle" + out,
+        "--course " + course + " --size 161x120" + out,
+        "--course " + course + " -o /nonexistent/folder/hole"}) {
+    // Without a display too: the inputs are checked before the window opens.
+    const auto r = run_minigolf("render " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "hole-filmstrip.png"));
+}
+
 TEST(ViewCli, WithoutAScreenViewAndRenderSayWhyInOneLine) {
   // Unset DISPLAY for the child (env -u): as on a machine without a screen and without Xvfb.
   for (const char* cmd : {"view --field flat --script /dev/null",
-                          "render --field flat --angle 0 --speed 1 -o /tmp/mg_viz_nodisplay"}) {
+                          "render --field flat --angle 0 --speed 1 -o /tmp/mg_viz_nodisplay",
+                          "render --course thesis --player oracle -o /tmp/mg_viz_nodisplay"}) {
     const auto r = run_minigolf_env("env -u DISPLAY -u WAYLAND_DISPLAY", cmd);
     const std::string& out = r.out;
     EXPECT_EQ(r.exit_code, 1) << "crashed or wrong code: " << out;
@@ -156,6 +218,44 @@ TEST(PlotCli, FieldAndModelFigures) {
                    shipped("datasets/flat-validation.csv") + " -o " + q(dir / "model.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(nonempty_png(dir / "model.png"));
+}
+
+TEST(PlotCli, RoundWritesOnePngPerHoleOfASmallCourse) {
+  const auto dir = testing::temp_dir("plot_round");
+  const auto r = run_minigolf("plot round --course " + q(tiny_course(dir)) +
+                              " --player oracle --seeds 2 --data-dir " + q(dir / "data") + " -o " +
+                              q(dir / "figs"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("hole 1: flat, par 2"), std::string::npos) << r.out;
+  EXPECT_TRUE(nonempty_png(dir / "figs" / "tiny-hole1.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "figs" / "tiny-hole2.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "data" / "tiny-hole1_paths.csv"));
+}
+
+TEST(PlotCli, FieldDrawsObstacles) {
+  const auto dir = testing::temp_dir("plot_obstacles");
+  const auto r = run_minigolf("plot field --field bank-shot --shot 0.3,1.5 --data-dir " +
+                              q(dir / "data") + " -o " + q(dir / "field.png"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1 obstacles"), std::string::npos) << r.out;
+  EXPECT_TRUE(nonempty_png(dir / "field.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "data" / "field_obstacles.csv"));
+}
+
+TEST(PlotCli, RoundRejectsBadInputsInOneLine) {
+  const auto dir = testing::temp_dir("plot_round_bad");
+  const std::string course = q(tiny_course(dir));
+  write(dir / "file", "x");
+  for (const std::string& args : {"--course nowhere -o " + q(dir / "figs"),
+                                  "--course " + course + " --seeds 0 -o " + q(dir / "figs"),
+                                  "--course " + course + " --player nobody -o " + q(dir / "figs"),
+                                  "--course " + course + " --stem a/b -o " + q(dir / "figs"),
+                                  "--course " + course + " -o " + q(dir / "file")}) {
+    const auto r = run_minigolf("plot round " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "figs"));
 }
 
 TEST(PlotCli, MissingOrBrokenInputsAreOneLineExitTwo) {

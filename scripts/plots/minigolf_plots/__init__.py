@@ -8,9 +8,11 @@ from .field import plot_field
 from .launch_error import plot_launch_error
 from .learning_curve import plot_learning_curve
 from .model import plot_model
+from .round import plot_round
 from .strength import plot_strength
 from .success import plot_success
 from .sweep import plot_sweep
 
 __all__ = ["PlotError", "read_csv", "plot_dataset", "plot_demo", "plot_field", "plot_launch_error",
-           "plot_learning_curve", "plot_model", "plot_success", "plot_sweep", "plot_ds", "plot_strength"]
+           "plot_learning_curve", "plot_model", "plot_round", "plot_success", "plot_sweep", "plot_ds",
+           "plot_strength"]

@@ -2,7 +2,7 @@
 import argparse
 import sys
 
-from .common import PlotError, parse_point
+from .common import HOLE_DIAMETER, PlotError, parse_point
 
 
 class Parser(argparse.ArgumentParser):
@@ -42,6 +42,20 @@ def build_parser():
     s.add_argument("--hole", action="extend", nargs="+", default=[], metavar="X,Y",
                    help="metres; write --hole=-0.3,0.2 when X is negative")
     s.add_argument("--tee", metavar="X,Y")
+    s.add_argument("--hole-diameter", type=float, default=HOLE_DIAMETER, metavar="D",
+                   help="[m] the cup drawn to scale")
+    s.add_argument("--obstacles", metavar="O.csv", help="obstacle,block,x,y footprint corners")
+    s.add_argument("--title")
+
+    s = sub.add_parser("round", help="a round's hole: every stroke's ball path over the field")
+    s.add_argument("heights_csv", metavar="HEIGHTS.csv")
+    s.add_argument("strokes_csv", metavar="STROKES.csv")
+    s.add_argument("out", metavar="OUT.png")
+    s.add_argument("--paths", metavar="PATHS.csv", help="round,stroke,x,y: the ball paths")
+    s.add_argument("--hole", required=True, metavar="X,Y", help="metres; write --hole=-0.3,0.2")
+    s.add_argument("--hole-diameter", type=float, default=HOLE_DIAMETER, metavar="D")
+    s.add_argument("--tee", metavar="X,Y")
+    s.add_argument("--obstacles", metavar="O.csv", help="obstacle,block,x,y footprint corners")
     s.add_argument("--title")
 
     s = sub.add_parser("learning-curve", help="success against training examples or putts")
@@ -81,9 +95,16 @@ def build_parser():
     return p
 
 
+def positive_diameter(d):
+    if not (0.0 < d < 10.0):
+        raise PlotError(f"--hole-diameter: {d} m: expected (0, 10)")
+    return d
+
+
 def run(a):
     from . import (plot_dataset, plot_demo, plot_ds, plot_field, plot_launch_error,
-                   plot_learning_curve, plot_model, plot_strength, plot_success, plot_sweep)
+                   plot_learning_curve, plot_model, plot_round, plot_strength, plot_success,
+                   plot_sweep)
     if a.command == "sweep":
         plot_sweep(a.sweep_csv, a.out, a.title)
     elif a.command == "model":
@@ -94,7 +115,13 @@ def run(a):
     elif a.command == "field":
         holes = [parse_point(h, "--hole") for h in a.hole]
         tee = parse_point(a.tee, "--tee") if a.tee else None
-        plot_field(a.heights_csv, a.out, a.trajectory, holes, tee, a.title)
+        plot_field(a.heights_csv, a.out, a.trajectory, holes, tee, a.title, a.obstacles,
+                   positive_diameter(a.hole_diameter))
+    elif a.command == "round":
+        tee = parse_point(a.tee, "--tee") if a.tee else None
+        plot_round(a.heights_csv, a.strokes_csv, a.paths, a.out,
+                   parse_point(a.hole, "--hole"), positive_diameter(a.hole_diameter), tee,
+                   a.obstacles, a.title)
     elif a.command == "learning-curve":
         plot_learning_curve(a.curve_csv, a.out, a.title, a.xlabel, a.percent)
     elif a.command == "success":

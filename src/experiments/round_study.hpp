@@ -1,0 +1,36 @@
+#pragma once
+/// Beyond the thesis: a round of minigolf (docs/round.md). Every shipped course (or the given
+/// ones) played by the robot, the oracle planner and the greedy player over seeds; the report's
+/// tables, a CSV of every stroke and a PNG of each hole's ball paths over the field.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "game/report.hpp"
+
+namespace mg::experiments {
+
+struct RoundStudyOptions {
+  std::vector<std::string> courses;  ///< empty: every shipped course
+  int seeds = 20;
+  std::uint64_t seed = 1;
+  int threads = 0;
+  int budget = game::RoundOptions{}.calibration_putts;  ///< learning putts per field
+  std::string config;                                   ///< module config YAML (empty: defaults)
+  std::string plant;  ///< plant file (empty: the robot's model is the world)
+  bool plots = true;  ///< one PNG per hole (the robot's rounds)
+};
+
+struct RoundStudy {
+  std::vector<game::CourseRounds> rounds;  ///< per course
+  std::string markdown;                    ///< the tables and the figure links
+};
+
+/// Plays and reports into `out` (rounds.csv, rounds.md, figures/round-<course>-hole<K>.png).
+/// `log` gets progress lines.
+RoundStudy round_study(const RoundStudyOptions& options, const std::filesystem::path& out,
+                       const std::function<void(const std::string&)>& log);
+
+}  // namespace mg::experiments
