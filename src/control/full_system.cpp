@@ -707,6 +707,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     if (k == launch_step) {
       const double* bv = d->qvel + ball_dof;
       r.launch = {std::atan2(bv[1], bv[0]), std::hypot(bv[0], bv[1])};
+      r.launch_state = world.ball_state(d);
       if (options.stance.yaw != 0.0)
         r.launch.angle = std::remainder(r.launch.angle - options.stance.yaw, 2.0 * robot::kPi);
     }

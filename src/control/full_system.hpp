@@ -173,6 +173,8 @@ struct FullPuttResult {
   /// world's for the identity stance).
   AngleSpeed club;
   AngleSpeed launch;
+  /// The ball's whole state when `launch` was measured (world frame; time: the world's clock).
+  sim::BallState launch_state;
   CoreTiming timing;
   double max_torque_ratio = 0.0;            ///< max |tau_j| / limit_j of the applied torques
   double max_raw_torque_ratio = 0.0;        ///< the same before the clamp

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <string>
+
+#include <fmt/format.h>
 
 #include "core/check.hpp"
 #include "core/error.hpp"
@@ -40,8 +43,31 @@ void run_block(const system::System& system, std::array<double, 2> ball, std::ar
   for (double a : b.angles)
     for (double s : b.speeds) launches.push_back({wrap(a), s});
   int n = 0;
-  b.out = imagine(system, ball, hole, launches, o.threads, cache, &n);
+  b.out = imagine(system, ball, hole, launches, o, cache, &n);
   simulated += n;
+}
+
+/// What makes one ball world differ from another (its field, its plant, its model), hashed
+/// (FNV-1a, 64 bits as two exact doubles): cache keys hold it, never an address or a per-object
+/// number, so the same world rebuilt for another seed meets the same entries.
+std::array<double, 2> world_identity(const system::System& system) {
+  const sim::World& w = system.ball_world();
+  const field::Field& f = w.field();
+  std::string text = f.name + '\n' + f.source + '\n' + system.plant().hash + '\n' + w.mjcf();
+  text += fmt::format("{} {} {}\n", f.rolling_resistance, f.sliding_friction, f.ball.radius);
+  const auto& b = f.bounds;  // the surface itself (a plant may tilt it): heights on a grid
+  for (int i = 0; i <= 8; ++i)
+    for (int j = 0; j <= 8; ++j)
+      text += fmt::format("{} ",
+                          f.height(b[0] + (b[1] - b[0]) * i / 8.0, b[2] + (b[3] - b[2]) * j / 8.0));
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
+  return {static_cast<double>(h >> 32), static_cast<double>(h & 0xffffffffull)};
+}
+
+/// How many cells either side a launch error of `sigma_cells` cells reaches (2 sigma, at most 6).
+int error_radius(double sigma_cells) {
+  return std::min(6, static_cast<int>(std::ceil(2.0 * sigma_cells)));
 }
 
 /// Expected strokes and sink probability of cell (i, j) under the launch error.
@@ -50,8 +76,7 @@ std::pair<double, double> score(const field::Field& field, const Block& b, std::
   const double da = b.angles.size() > 1 ? std::abs(b.angles[1] - b.angles[0]) : 1.0;
   const double dls = b.speeds.size() > 1 ? std::log(b.speeds[1] / b.speeds[0]) : 1.0;
   const double sa = e.angle / da, ss = e.speed / dls;  // the error in cells
-  const int ra = std::min(6, static_cast<int>(std::ceil(2.5 * sa)));
-  const int rs = std::min(6, static_cast<int>(std::ceil(2.5 * ss)));
+  const int ra = error_radius(sa), rs = error_radius(ss);
   double wsum = 0.0, miss = 0.0, sink = 0.0;
   for (int di = -ra; di <= ra; ++di)
     for (int dj = -rs; dj <= rs; ++dj) {
@@ -81,7 +106,7 @@ void PlannerOptions::validate() const {
   require_in_range("planner.accept_probability", accept_probability, 0.0, 1.0);
 }
 
-bool ImaginedCache::find(const std::array<double, 6>& key, Imagined& out) const {
+bool ImaginedCache::find(const Key& key, Imagined& out) const {
   std::lock_guard lock(mutex_);
   const auto it = map_.find(key);
   if (it == map_.end()) return false;
@@ -89,33 +114,39 @@ bool ImaginedCache::find(const std::array<double, 6>& key, Imagined& out) const 
   return true;
 }
 
-void ImaginedCache::store(const std::array<double, 6>& key, const Imagined& value) {
+void ImaginedCache::store(const Key& key, const Imagined& value) {
   std::lock_guard lock(mutex_);
   map_.emplace(key, value);
 }
 
 std::vector<Imagined> imagine(const system::System& system, std::array<double, 2> ball,
                               std::array<double, 2> hole,
-                              const std::vector<std::array<double, 2>>& launches, int threads,
-                              ImaginedCache* cache, int* simulated) {
+                              const std::vector<std::array<double, 2>>& launches,
+                              const PlannerOptions& options, ImaginedCache* cache, int* simulated) {
+  const auto world_id = world_identity(system);
+  std::vector<sim::PuttRequest> requests(launches.size());
+  std::vector<ImaginedCache::Key> keys(launches.size());
+  for (std::size_t k = 0; k < launches.size(); ++k) {
+    sim::PuttRequest& r = requests[k];
+    r.angle = launches[k][0];
+    r.speed = launches[k][1];
+    r.start = ball;
+    if (options.club_launch) r.club = options.club_launch(r.speed);
+    const auto& c = r.club;
+    keys[k] = {world_id[0],      world_id[1], ball[0],   ball[1],   r.angle,
+               r.speed,          hole[0],     hole[1],   c.advance, c.lift,
+               c.vertical_speed, c.spin[0],   c.spin[1], c.spin[2]};
+  }
   std::vector<Imagined> out(launches.size());
   std::vector<int> todo;
-  const auto key = [&](std::size_t k) {
-    return std::array<double, 6>{ball[0],        ball[1], launches[k][0],
-                                 launches[k][1], hole[0], hole[1]};
-  };
   for (std::size_t k = 0; k < launches.size(); ++k)
-    if (cache == nullptr || !cache->find(key(k), out[k])) todo.push_back(static_cast<int>(k));
+    if (cache == nullptr || !cache->find(keys[k], out[k])) todo.push_back(static_cast<int>(k));
   const sim::World& world = system.ball_world();
-  system::parallel_for(system, static_cast<int>(todo.size()), system::thread_count(threads),
+  system::parallel_for(system, static_cast<int>(todo.size()), system::thread_count(options.threads),
                        [&](int t, system::SystemData& data) {
                          const auto k = static_cast<std::size_t>(todo[static_cast<std::size_t>(t)]);
-                         sim::PuttRequest r;
-                         r.angle = launches[k][0];
-                         r.speed = launches[k][1];
-                         r.start = ball;
                          const sim::PuttOutcome p =
-                             sim::simulate_putt(world, data.ball.get(), hole, r);
+                             sim::simulate_putt(world, data.ball.get(), hole, requests[k]);
                          Imagined m;
                          m.sunk = p.sunk;
                          m.left_lane = p.end == sim::PuttEnd::kLeftLane;
@@ -125,7 +156,7 @@ std::vector<Imagined> imagine(const system::System& system, std::array<double, 2
                        });
   if (cache != nullptr)
     for (int k : todo)
-      cache->store(key(static_cast<std::size_t>(k)), out[static_cast<std::size_t>(k)]);
+      cache->store(keys[static_cast<std::size_t>(k)], out[static_cast<std::size_t>(k)]);
   if (simulated != nullptr) *simulated = static_cast<int>(todo.size());
   return out;
 }
@@ -153,6 +184,34 @@ double strokes_to_go(const field::Field& field, std::array<double, 2> rest, bool
   return v;
 }
 
+namespace {
+
+/// A cell of a coarse block, scored.
+struct Candidate {
+  double expected = 0.0, probability = 0.0, angle = 0.0, speed = 0.0;
+  bool bank = false;
+};
+
+bool better(double e, double p, double best_e, double best_p) {
+  // Ties: the more certain sink.
+  return e < best_e - 1e-12 || (std::abs(e - best_e) <= 1e-12 && p > best_p);
+}
+
+/// The fine block around a candidate: spacing half the launch error (at least 0.5 mrad and
+/// 0.2 %), kRefineHalfCells either side.
+Block fine_block(const Candidate& c, const LaunchError& e) {
+  Block f;
+  const double da = std::clamp(e.angle / 2.0, kRefineAngleMin, kFineStep / 2.0);
+  const double ds = std::clamp(e.speed / 2.0, kRefineSpeedMin, 0.01);
+  for (int i = -kRefineHalfCells; i <= kRefineHalfCells; ++i) f.angles.push_back(c.angle + i * da);
+  for (int j = -kRefineHalfCells; j <= kRefineHalfCells; ++j)
+    f.speeds.push_back(c.speed * std::exp(j * ds));
+  f.bank = c.bank;
+  return f;
+}
+
+}  // namespace
+
 StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
                        std::array<double, 2> hole, const LaunchError& error,
                        const PlannerOptions& options, ImaginedCache* cache) {
@@ -162,22 +221,15 @@ StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
   const field::Field& field = system.field();
   system::check_ball_position(field, ball, "ball");
   field::check_hole_position(field, hole);
-  StrokePlan best;
-  best.expected_strokes = std::numeric_limits<double>::infinity();
   int simulated = 0;
-  const auto consider = [&](const Block& b) {
+  std::vector<Candidate> cells;  // every coarse cell, scored on its own grid
+  double best_p = 0.0;
+  const auto collect = [&](const Block& b, bool sinks_only_refined) {
     for (std::size_t i = 0; i < b.angles.size(); ++i)
       for (std::size_t j = 0; j < b.speeds.size(); ++j) {
-        const auto [e, p] = score(field, b, i, j, error);
-        // Ties: the more certain sink, then the slower putt (safer past the hole).
-        if (e < best.expected_strokes - 1e-12 ||
-            (std::abs(e - best.expected_strokes) <= 1e-12 && p > best.sink_probability)) {
-          best.angle = wrap(b.angles[i]);
-          best.speed = b.speeds[j];
-          best.expected_strokes = e;
-          best.sink_probability = p;
-          best.bank = b.bank;
-        }
+        const auto [e, p] = score(field, b, i, j, sinks_only_refined ? LaunchError{} : error);
+        cells.push_back({e, p, wrap(b.angles[i]), b.speeds[j], b.bank});
+        best_p = std::max(best_p, p);
       }
   };
   const double direct = std::atan2(hole[1] - ball[1], hole[0] - ball[0]);
@@ -186,31 +238,17 @@ StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
   for (int i = -k; i <= k; ++i) d.angles.push_back(direct + i * kFineStep);
   d.speeds = speed_ladder(options);
   run_block(system, ball, hole, d, options, cache, simulated);
-  consider(d);
-  if (best.sink_probability < options.accept_probability) {
-    // All round, coarse: where do paths come near the hole?
+  collect(d, false);
+  if (best_p < options.accept_probability) {
+    // All round, coarse (exact execution assumed there: its cells are too far apart to smooth
+    // over): lay-ups, and the directions whose paths came nearest the hole.
     Block c;
     const int n = static_cast<int>(std::lround(2.0 * kPi / kCoarseStep));
     for (int i = 0; i < n; ++i) c.angles.push_back(direct + kPi * (2.0 * i / n - 1.0));
     c.speeds = speed_ladder(options, 2);
     c.bank = true;
     run_block(system, ball, hole, c, options, cache, simulated);
-    // Lay-ups from the coarse grid (exact execution assumed there: its cells are too far apart
-    // to smooth over) ...
-    const LaunchError none{};
-    for (std::size_t i = 0; i < c.angles.size(); ++i)
-      for (std::size_t j = 0; j < c.speeds.size(); ++j) {
-        const auto [e, p] = score(field, c, i, j, none);
-        // A coarse cell stands for a lay-up only: a sink there is refined below.
-        if (p == 0.0 && e < best.expected_strokes) {
-          best.angle = wrap(c.angles[i]);
-          best.speed = c.speeds[j];
-          best.expected_strokes = e;
-          best.sink_probability = 0.0;
-          best.bank = true;
-        }
-      }
-    // ... and the directions whose paths came nearest the hole, away from the direct line.
+    collect(c, true);
     std::vector<std::pair<double, double>> near;  // (closest approach, angle)
     for (std::size_t i = 0; i < c.angles.size(); ++i) {
       if (std::abs(wrap(c.angles[i] - direct)) < kDirectSpan) continue;
@@ -234,8 +272,43 @@ StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
       r.speeds = speed_ladder(options);
       r.bank = true;
       run_block(system, ball, hole, r, options, cache, simulated);
-      consider(r);
+      collect(r, false);
     }
+  }
+  // The best coarse cells, apart from each other, each judged again on a fine grid at the scale
+  // of the launch error: a coarse cell that sinks may sit on a window's edge.
+  std::stable_sort(cells.begin(), cells.end(), [](const Candidate& a, const Candidate& b) {
+    return better(a.expected, a.probability, b.expected, b.probability);
+  });
+  std::vector<Candidate> picked;
+  for (const Candidate& c : cells) {
+    if (static_cast<int>(picked.size()) >= kCandidates) break;
+    bool apart = true;
+    for (const Candidate& q : picked)
+      apart = apart && (std::abs(wrap(c.angle - q.angle)) > 2.0 * kFineStep ||
+                        std::abs(std::log(c.speed / q.speed)) > 0.05);
+    if (apart) picked.push_back(c);
+  }
+  StrokePlan best;
+  best.expected_strokes = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : picked) {
+    Block f = fine_block(c, error);
+    run_block(system, ball, hole, f, options, cache, simulated);
+    // Only cells whose error neighbourhood lies inside the block are judged.
+    const int ra = error_radius(error.angle / std::abs(f.angles[1] - f.angles[0]));
+    const int rs = error_radius(error.speed / std::log(f.speeds[1] / f.speeds[0]));
+    for (int i = ra; i < static_cast<int>(f.angles.size()) - ra; ++i)
+      for (int j = rs; j < static_cast<int>(f.speeds.size()) - rs; ++j) {
+        const auto [e, p] =
+            score(field, f, static_cast<std::size_t>(i), static_cast<std::size_t>(j), error);
+        if (better(e, p, best.expected_strokes, best.sink_probability)) {
+          best.angle = wrap(f.angles[i]);
+          best.speed = f.speeds[j];
+          best.expected_strokes = e;
+          best.sink_probability = p;
+          best.bank = f.bank;
+        }
+      }
   }
   best.imagined_putts = simulated;
   return best;

@@ -8,9 +8,12 @@
 /// 2. If no direct launch sinks with probability >= accept_probability: every direction around
 ///    the ball (kCoarseStep apart, every other speed), then the kRefineRegions directions whose
 ///    paths came nearest the hole, refined at kFineStep (bank shots off borders and walls).
-/// 3. Score of a launch: E = 1 + sum over its neighbours in the launch grid, weighted by the
-///    launch error (a Gaussian in angle and in relative speed), of (1 - sunk) V(rest), with V the
-///    strokes-to-go heuristic below; the smallest E wins (a lay-up when nothing sinks surely).
+/// 3. Score of a launch: E = 1 + sum over its neighbours in the launch grid within 2 sigma,
+///    weighted by the launch error (a Gaussian in angle and in relative speed), of
+///    (1 - sunk) V(rest), with V the strokes-to-go heuristic below.
+/// 4. The kCandidates best cells of steps 1-2 (apart from each other) are judged again on a fine
+///    grid round each, spaced at half the launch error: a coarse cell that sank may sit on a
+///    window's edge. The smallest E there wins (a lay-up when nothing sinks surely).
 /// V(p) = 1 + [the straight line from p to the hole is blocked by an obstacle] + 0.05 per metre
 /// to the hole; a ball that left the lane adds its penalty stroke.
 #include <array>
@@ -22,6 +25,7 @@
 #include <vector>
 
 #include "field/field.hpp"
+#include "sim/putt.hpp"
 #include "system/system.hpp"
 
 namespace mg::game {
@@ -46,7 +50,10 @@ struct PlannerOptions {
   double speed_max = 4.2;
   int speeds = 22;                  ///< geometric ladder
   double accept_probability = 0.9;  ///< a direct sink this sure ends the search
-  int threads = 0;                  ///< 0: all cores
+  /// How the ball leaves the club at a launch speed [m/s] (the robot's launch skill); empty: a
+  /// plain launch (the oracle's exact ball-only putts).
+  std::function<sim::ClubLaunch(double)> club_launch;
+  int threads = 0;  ///< 0: all cores
   void validate() const;
 };
 
@@ -54,7 +61,11 @@ inline constexpr double kFineStep = 0.004;   ///< [rad]
 inline constexpr double kDirectSpan = 0.14;  ///< [rad]
 inline constexpr double kCoarseStep = 0.02;  ///< [rad]
 inline constexpr int kRefineRegions = 6;
-inline constexpr double kRefineSpan = 0.03;  ///< [rad]
+inline constexpr double kRefineSpan = 0.03;        ///< [rad]
+inline constexpr int kCandidates = 4;              ///< coarse cells judged again on a fine grid
+inline constexpr int kRefineHalfCells = 7;         ///< fine grid: 15 x 15 cells round a candidate
+inline constexpr double kRefineAngleMin = 0.0005;  ///< [rad] least fine-grid spacing
+inline constexpr double kRefineSpeedMin = 0.002;   ///< [-] least relative fine-grid spacing
 
 struct StrokePlan {
   double angle = 0.0;  ///< [rad, world] launch direction
@@ -65,25 +76,26 @@ struct StrokePlan {
   int imagined_putts = 0;         ///< putts simulated for this plan (cache hits excluded)
 };
 
-/// Memo of imagined putts by (world, ball, angle, speed, hole) bits: a deterministic function, so
-/// the same stroke situation (the tee of every seed, the oracle and a robot sharing a world) is
-/// searched once. Thread-safe.
+/// Memo of imagined putts by (world, ball, angle, speed, hole, club launch) bits: a deterministic
+/// function, so the same stroke situation (the tee of every seed, the oracle and a robot sharing
+/// a world) is searched once. Thread-safe.
 class ImaginedCache {
  public:
-  bool find(const std::array<double, 6>& key, Imagined& out) const;
-  void store(const std::array<double, 6>& key, const Imagined& value);
+  using Key = std::array<double, 14>;
+  bool find(const Key& key, Imagined& out) const;
+  void store(const Key& key, const Imagined& value);
 
  private:
   mutable std::mutex mutex_;
-  std::map<std::array<double, 6>, Imagined> map_;
+  std::map<Key, Imagined> map_;
 };
 
 /// Ball-only putts in `system`'s ball world from `ball`, simulated (the fast planning path) in
 /// parallel; results by index (the same bits for any thread count).
 std::vector<Imagined> imagine(const system::System& system, std::array<double, 2> ball,
                               std::array<double, 2> hole,
-                              const std::vector<std::array<double, 2>>& launches, int threads,
-                              ImaginedCache* cache, int* simulated);
+                              const std::vector<std::array<double, 2>>& launches,
+                              const PlannerOptions& options, ImaginedCache* cache, int* simulated);
 
 /// Strokes-to-go heuristic V after a ball that did not sink stops at `rest` (see file comment).
 double strokes_to_go(const field::Field& field, std::array<double, 2> rest, bool left_lane);

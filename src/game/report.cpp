@@ -49,6 +49,7 @@ nlohmann::json round_json(const RoundResult& r) {
       putts.push_back({{"ball", p.ball},
                        {"angle", p.angle},
                        {"speed", p.speed},
+                       {"launch", p.launch},
                        {"rest", p.rest},
                        {"sunk", p.sunk},
                        {"left_lane", p.left_lane},

@@ -10,52 +10,41 @@
 #include "core/check.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "game/skill.hpp"
 #include "sim/putt.hpp"
 
 namespace mg::game {
 namespace {
 
 constexpr double kPathInterval = 0.01;  // [s] between recorded path points
+constexpr double kPi = 3.14159265358979323846;
 
-/// The robot's launch skill: launch speed = gain * club speed + offset, launch angle = hitting
-/// angle + angle_offset (the stance's frame), fitted by least squares to every putt it has seen.
-struct LaunchSkill {
-  std::vector<double> club, launch, angle_residual;
-  double gain = 1.6, offset = 0.0, angle_offset = 0.0;
-  double angle_std = 0.0, speed_std = 0.0;  ///< [rad], [-] of the fit's residuals
-
-  void add(double club_speed, double hitting_angle, const control::AngleSpeed& got) {
-    club.push_back(club_speed);
-    launch.push_back(got.speed);
-    angle_residual.push_back(got.angle - hitting_angle);
-    fit();
-  }
-  void fit() {
-    const auto n = static_cast<double>(club.size());
-    double sx = 0, sy = 0, sxx = 0, sxy = 0, sa = 0;
-    for (std::size_t i = 0; i < club.size(); ++i) {
-      sx += club[i], sy += launch[i], sxx += club[i] * club[i], sxy += club[i] * launch[i];
-      sa += angle_residual[i];
-    }
-    const double det = n * sxx - sx * sx;
-    if (club.size() >= 2 && det > 1e-9 * n * sxx) {
-      gain = (n * sxy - sx * sy) / det;
-      offset = (sy - gain * sx) / n;
-    } else if (sxx > 0) {
-      gain = sxy / sxx, offset = 0.0;
-    }
-    angle_offset = sa / n;
-    double ea = 0, es = 0;
-    for (std::size_t i = 0; i < club.size(); ++i) {
-      ea += std::pow(angle_residual[i] - angle_offset, 2);
-      es += std::pow((launch[i] - gain * club[i] - offset) / launch[i], 2);
-    }
-    angle_std = club.size() > 2 ? std::sqrt(ea / (n - 2)) : 0.0;
-    speed_std = club.size() > 2 ? std::sqrt(es / (n - 2)) : 0.0;
-  }
-  double club_for(double launch_speed) const { return (launch_speed - offset) / gain; }
-  double launch_for(double club_speed) const { return gain * club_speed + offset; }
+/// The launch the arm gave, in the terms of an imagined putt's request: horizontal direction
+/// [rad, world], speed along the surface at the start [m/s] and the club's extras, from the ball's
+/// state when the launch was measured (seen on the robot's own model of the field).
+struct ArmLaunch {
+  double angle = 0.0, speed = 0.0;
+  sim::ClubLaunch club;
 };
+
+ArmLaunch arm_launch(const field::Field& f, std::array<double, 2> start, const sim::BallState& s) {
+  ArmLaunch a;
+  const double vx = s.qvel[0], vy = s.qvel[1], vz = s.qvel[2];
+  const double vh = std::hypot(vx, vy);
+  a.angle = std::atan2(vy, vx);
+  const double cx = std::cos(a.angle), cy = std::sin(a.angle);
+  const auto g = f.surface.gradient(start[0], start[1]);
+  const double cz = g[0] * cx + g[1] * cy;  // as sim::start_putt launches along the surface
+  a.speed = vh * std::sqrt(1.0 + cz * cz);
+  a.club.advance = (s.qpos[0] - start[0]) * cx + (s.qpos[1] - start[1]) * cy;
+  a.club.lift = std::max(0.0, s.qpos[2] - f.height(s.qpos[0], s.qpos[1]) - f.ball.radius);
+  a.club.vertical_speed = vz - cz * vh;
+  // Angular velocity: body frame -> world (the orientation quaternion) -> launch frame.
+  mjtNum w_body[3] = {s.qvel[3], s.qvel[4], s.qvel[5]}, w[3];
+  mju_rotVecQuat(w, w_body, s.qpos.data() + 3);
+  a.club.spin = {cx * w[0] + cy * w[1], -cy * w[0] + cx * w[1], w[2]};
+  return a;
+}
 
 /// Per field: the belief (the robot's model: the field file, no plant), the truth, the skill.
 struct HoleWorlds {
@@ -94,6 +83,8 @@ void RoundOptions::validate() const {
     throw InputError(
         fmt::format("budget: expected 1..50 learning putts per field, got {}", calibration_putts));
   require_in_range("vision_noise", vision_noise, 0.0, 0.05);
+  require_in_range("min_angle_error", min_angle_error, 0.0, 0.5);
+  require_in_range("min_speed_error", min_speed_error, 0.0, 0.5);
   planner.validate();
 }
 
@@ -158,17 +149,19 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         o.seed = derive_seed(options.seed, 2000 + h * 64 + k);
         const auto r = system::arm_putt(*w.truth, *w.data, hole, 0.0, club, o);
         if (r.hit_refused || !r.hit) continue;
-        skill.add(club, 0.0, r.launch);
+        const ArmLaunch a = arm_launch(field, r.ball_start, r.launch_state);
+        skill.add(club, 0.0, a.angle, a.speed, a.club);  // the identity stance: world = robot
         ++result.learning_putts;
       }
-      if (skill.club.empty())
+      if (skill.size() == 0)
         throw NumericalError(fmt::format("{}: no calibration putt hit the ball", field.name));
     }
     PlannerOptions po = options.planner;
     if (uses_arm) {  // only the launches the arm can give
-      po.speed_min = std::max(po.speed_min, skill.launch_for(club_min * 1.02));
-      po.speed_max = std::min(po.speed_max, skill.launch_for(club_max * 0.98));
+      po.speed_min = std::max(po.speed_min, skill.launch_speed(club_min * 1.02));
+      po.speed_max = std::min(po.speed_max, skill.launch_speed(club_max * 0.98));
       if (!(po.speed_max > po.speed_min)) po.speed_max = po.speed_min * 1.5;
+      po.club_launch = [&skill](double u) { return skill.club_launch(u); };
     }
 
     HoleResult hr;
@@ -192,7 +185,7 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         for (int j = 0; j < po.speeds; ++j)
           launches.push_back({direct, po.speed_min * std::pow(q, j)});
         int n = 0;
-        const auto out = imagine(*w.belief, seen, hole, launches, po.threads, cache, &n);
+        const auto out = imagine(*w.belief, seen, hole, launches, po, cache, &n);
         result.imagined_putts += n;
         double best = 1e9;
         for (std::size_t j = 0; j < out.size(); ++j) {
@@ -203,7 +196,9 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
       } else {
         const bool oracle = options.player == Player::kOracle;
         LaunchError err;
-        if (!oracle) err = {std::max(0.004, skill.angle_std), std::max(0.02, skill.speed_std)};
+        if (!oracle)
+          err = {std::max(options.min_angle_error, skill.angle_std()),
+                 std::max(options.min_speed_error, skill.speed_std())};
         plan = plan_stroke(oracle ? *w.truth : *w.belief, seen, hole, err, po, cache);
         result.imagined_putts += plan.imagined_putts;
       }
@@ -216,6 +211,7 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
       if (!uses_arm) {
         out =
             system::ball_putt(*w.truth, *w.data, hole, plan.angle, plan.speed, kPathInterval, ball);
+        s.launch = {plan.angle, plan.speed};
       } else {
         control::FullPuttOptions o;
         o.seed = derive_seed(options.seed, 3000 + h * 64 + static_cast<std::uint64_t>(hr.strokes));
@@ -223,8 +219,8 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         o.stance = system::stance_for(*w.truth, ball, plan.angle);
         // The robot walks to the ball it saw: the module sees it off by the vision error.
         o.perceived_ball_offset = {seen[0] - ball[0], seen[1] - ball[1]};
-        const double hitting = -skill.angle_offset;
-        const double club = std::clamp(skill.club_for(plan.speed), club_min, club_max);
+        const double club = skill.club_for(plan.speed, club_min, club_max);
+        const double hitting = -skill.angle_offset(club);
         const auto r = system::arm_putt(*w.truth, *w.data, hole, hitting, club, o);
         if (r.hit_refused || !r.hit) {
           // Braked, the ball untouched: the stroke counts (a whiff), the ball stays.
@@ -232,7 +228,11 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
           out.end = sim::PuttEnd::kAtRest;
         } else {
           out = r.outcome;
-          skill.add(club, hitting, r.launch);  // every stroke played refines the skill
+          const ArmLaunch a = arm_launch(field, r.ball_start, r.launch_state);
+          s.launch = {a.angle, a.speed};
+          // Every stroke played refines the skill (angles in the robot's frame).
+          skill.add(club, hitting, std::remainder(a.angle - o.stance.yaw, 2.0 * kPi), a.speed,
+                    a.club);
         }
       }
       ++hr.strokes;

@@ -33,6 +33,9 @@ struct RoundOptions {
   std::uint64_t seed = 0;
   int calibration_putts = 6;    ///< per field: the robot's learning putts (1..50)
   double vision_noise = 0.002;  ///< [m] std per axis of the robot's view of the ball per stroke
+  /// The least launch error the robot plans under, whatever its skill's fit says [rad], [-].
+  double min_angle_error = 0.002;
+  double min_speed_error = 0.006;
   PlannerOptions planner;
   void validate() const;
 };
@@ -41,6 +44,9 @@ struct StrokeRecord {
   std::array<double, 2> ball{0, 0};  ///< where it lay [m]
   double angle = 0.0;                ///< [rad, world] planned launch direction
   double speed = 0.0;                ///< [m/s] planned launch speed
+  /// What the ball got: launch direction [rad, world] and speed [m/s] (the plan's, for the
+  /// oracle; the arm's measured launch for the robot and greedy; 0, 0 for a braked hit).
+  std::array<double, 2> launch{0, 0};
   std::array<double, 2> rest{0, 0};  ///< where it stopped (or left the lane) [m]
   bool sunk = false;
   bool left_lane = false;         ///< a penalty stroke follows

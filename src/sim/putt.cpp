@@ -19,6 +19,10 @@ void PuttRequest::validate() const {
     require_finite("start.x", (*start)[0]);
     require_finite("start.y", (*start)[1]);
   }
+  require_in_range("club.advance", club.advance, -0.5, 0.5);
+  require_in_range("club.lift", club.lift, 0.0, 0.2);
+  require_in_range("club.vertical_speed", club.vertical_speed, -5.0, 5.0);
+  for (double w : club.spin) require_in_range("club.spin", w, -2000.0, 2000.0);
 }
 
 std::string to_string(PuttEnd end) {
@@ -36,24 +40,38 @@ std::string to_string(PuttEnd end) {
 }
 
 OutcomeTracker::OutcomeTracker(const World& world, const mjData* d, const OutcomeRules& rules)
-    : world_(&world), rules_(rules) {
-  hole_ = world.hole_position(d);
+    : OutcomeTracker(world, world.hole_position(d), rules, d->time, d->qpos + world.ids().ball_qpos,
+                     d->qvel + world.ids().ball_dof) {}
+
+OutcomeTracker::OutcomeTracker(const World& world, std::array<double, 2> hole,
+                               const OutcomeRules& rules, double time, const double* position,
+                               const double* velocity)
+    : world_(&world), rules_(rules), hole_(hole) {
   hole_radius_ = 0.5 * world.field().hole.diameter;
   rim_z_ = world.field().height(hole_[0], hole_[1]);
   const auto& b = world.field().bounds;
-  lowest_z_ = 1e9;
-  for (int i = 0; i <= 20; ++i)
-    for (int j = 0; j <= 20; ++j)
-      lowest_z_ = std::min(lowest_z_, world.field().height(b[0] + (b[1] - b[0]) * i / 20,
-                                                           b[2] + (b[3] - b[2]) * j / 20));
+  corner_z_ = world.field().height(b[0], b[2]);
   outcome_.closest_approach = 1e9;
-  update(d);
+  update(time, position, velocity);
+}
+
+double OutcomeTracker::lowest_z() {
+  if (std::isnan(lowest_z_)) {
+    const auto& b = world_->field().bounds;
+    lowest_z_ = 1e9;
+    for (int i = 0; i <= 20; ++i)
+      for (int j = 0; j <= 20; ++j)
+        lowest_z_ = std::min(lowest_z_, world_->field().height(b[0] + (b[1] - b[0]) * i / 20,
+                                                               b[2] + (b[3] - b[2]) * j / 20));
+  }
+  return lowest_z_;
 }
 
 bool OutcomeTracker::update(const mjData* d) {
-  const auto& ids = world_->ids();
-  const mjtNum* q = d->qpos + ids.ball_qpos;
-  const mjtNum* v = d->qvel + ids.ball_dof;
+  return update(d->time, d->qpos + world_->ids().ball_qpos, d->qvel + world_->ids().ball_dof);
+}
+
+bool OutcomeTracker::update(double time, const double* q, const double* v) {
   const double r = world_->field().ball.radius;
   const double dx = hole_[0] - q[0], dy = hole_[1] - q[1];
   const double dist = std::hypot(dx, dy);
@@ -69,7 +87,7 @@ bool OutcomeTracker::update(const mjData* d) {
     outcome_.approach_along = reached_rim_ ? 0.0 : heading_x_ * dx + heading_y_ * dy;
   }
   outcome_.closest_approach = std::min(outcome_.closest_approach, dist);
-  outcome_.duration = d->time;
+  outcome_.duration = time;
   outcome_.rest_position = {q[0], q[1]};
   const bool over_hole = dist < hole_radius_;
 
@@ -82,8 +100,8 @@ bool OutcomeTracker::update(const mjData* d) {
   // Dropped into a (shallow) cup and staying there.
   const double drop = 0.5 * std::min(world_->field().hole.depth, r);
   if (over_hole && q[2] < rim_z_ + r - drop) {
-    if (inside_since_ < 0.0) inside_since_ = d->time;
-    if (d->time - inside_since_ >= rules_.settle_time) {
+    if (inside_since_ < 0.0) inside_since_ = time;
+    if (time - inside_since_ >= rules_.settle_time) {
       outcome_.sunk = true;
       outcome_.end = PuttEnd::kSunk;
       return true;
@@ -92,15 +110,17 @@ bool OutcomeTracker::update(const mjData* d) {
     inside_since_ = -1.0;
   }
   const auto& b = world_->field().bounds;
-  if (!std::isfinite(q[0] + q[1] + q[2]) || q[2] < lowest_z_ - 0.3 || q[0] < b[0] - 0.2 ||
-      q[0] > b[1] + 0.2 || q[1] < b[2] - 0.2 || q[1] > b[3] + 0.2) {
+  // Fell below the lowest ground (corner_z_ >= lowest_z_: the grid's minimum only when needed).
+  const bool fell = q[2] < corner_z_ - 0.3 && q[2] < lowest_z() - 0.3;
+  if (!std::isfinite(q[0] + q[1] + q[2]) || fell || q[0] < b[0] - 0.2 || q[0] > b[1] + 0.2 ||
+      q[1] < b[2] - 0.2 || q[1] > b[3] + 0.2) {
     outcome_.end = PuttEnd::kLeftLane;
     return true;
   }
   const double speed = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   if (speed < rules_.rest_speed) {
-    if (still_since_ < 0.0) still_since_ = d->time;
-    if (d->time - still_since_ >= rules_.rest_time) {
+    if (still_since_ < 0.0) still_since_ = time;
+    if (time - still_since_ >= rules_.rest_time) {
       // At rest inside a (shallow) cup counts as holed.
       outcome_.sunk = over_hole;
       outcome_.end = over_hole ? PuttEnd::kSunk : PuttEnd::kAtRest;
@@ -112,8 +132,8 @@ bool OutcomeTracker::update(const mjData* d) {
   return false;
 }
 
-PuttOutcome simulate_putt(const World& world, mjData* d, std::array<double, 2> hole,
-                          const PuttRequest& request, const OutcomeRules& rules) {
+void start_putt(const World& world, mjData* d, std::array<double, 2> hole,
+                const PuttRequest& request) {
   request.validate();
   const mjModel* m = world.model();
   world.reset(d);
@@ -124,10 +144,20 @@ PuttOutcome simulate_putt(const World& world, mjData* d, std::array<double, 2> h
   const double r = f.ball.radius;
   if (start[0] < b[0] + r || start[0] > b[1] - r || start[1] < b[2] + r || start[1] > b[3] - r)
     throw InputError(fmt::format("start: ({}, {}) is outside the lane", start[0], start[1]));
-  world.place_ball(d, start);
+  const double cx = std::cos(request.angle), cy = std::sin(request.angle);
+  const ClubLaunch& club = request.club;
+  if (club.plain()) {
+    world.place_ball(d, start);
+  } else {  // where the club left the ball: moved along the launch, lifted
+    const std::array<double, 2> at{start[0] + club.advance * cx, start[1] + club.advance * cy};
+    if (at[0] < b[0] + r || at[0] > b[1] - r || at[1] < b[2] + r || at[1] > b[3] - r)
+      throw InputError(fmt::format(
+          "club.advance: the ball would start at ({}, {}), outside the lane", at[0], at[1]));
+    world.place_ball(d, at);
+    d->qpos[world.ids().ball_qpos + 2] += club.lift;
+  }
 
   // Launch along the surface tangent in the requested horizontal direction.
-  const double cx = std::cos(request.angle), cy = std::sin(request.angle);
   const auto g = f.surface.gradient(start[0], start[1]);
   const double cz = g[0] * cx + g[1] * cy;
   const double scale = request.speed / std::sqrt(1.0 + cz * cz);
@@ -135,7 +165,13 @@ PuttOutcome simulate_putt(const World& world, mjData* d, std::array<double, 2> h
   v[0] = cx * scale;
   v[1] = cy * scale;
   v[2] = cz * scale;
-  if (request.rolling_start) {
+  if (!club.plain()) {
+    v[2] += club.vertical_speed;
+    // Launch frame -> world (the ball's body frame is the world's at placement).
+    v[3] = cx * club.spin[0] - cy * club.spin[1];
+    v[4] = cy * club.spin[0] + cx * club.spin[1];
+    v[5] = club.spin[2];
+  } else if (request.rolling_start) {
     // w = n x v / r in the world frame, stored in the ball's body frame (identity at rest).
     const double inv = 1.0 / std::sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
     const double n[3] = {-g[0] * inv, -g[1] * inv, inv};
@@ -145,7 +181,12 @@ PuttOutcome simulate_putt(const World& world, mjData* d, std::array<double, 2> h
   }
   world.update_ground_contact(d);
   mj_forward(m, d);
+}
 
+PuttOutcome simulate_putt(const World& world, mjData* d, std::array<double, 2> hole,
+                          const PuttRequest& request, const OutcomeRules& rules) {
+  start_putt(world, d, hole, request);
+  const mjModel* m = world.model();
   OutcomeTracker tracker(world, d, rules);
   std::vector<BallSample> trajectory;
   const int record_every =

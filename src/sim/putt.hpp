@@ -1,6 +1,7 @@
 #pragma once
 /// A ball-only putt: launch the ball from the tee and simulate until the outcome is decided.
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -8,6 +9,20 @@
 #include "sim/world.hpp"
 
 namespace mg::sim {
+
+/// The ball as a club leaves it, beyond a plain launch: the arm's putts hop and spin
+/// (game/skill.hpp learns this from its own putts). All zero: a plain launch (on the ground,
+/// sliding, no spin). Launch frame: x along the launch angle, y to its left, z up.
+struct ClubLaunch {
+  double advance = 0.0;                 ///< [m] the ball starts this far along x
+  double lift = 0.0;                    ///< [m] its centre this far above its resting height
+  double vertical_speed = 0.0;          ///< [m/s] added to the launch velocity
+  std::array<double, 3> spin{0, 0, 0};  ///< [rad/s] angular velocity, launch frame
+  bool plain() const {
+    return advance == 0.0 && lift == 0.0 && vertical_speed == 0.0 && spin[0] == 0.0 &&
+           spin[1] == 0.0 && spin[2] == 0.0;
+  }
+};
 
 /// What to simulate.
 struct PuttRequest {
@@ -17,6 +32,8 @@ struct PuttRequest {
   std::optional<std::array<double, 2>> start;
   /// Start already rolling (spin matched to the speed) instead of sliding without spin.
   bool rolling_start = false;
+  /// The club's launch (overrides rolling_start when not plain).
+  ClubLaunch club;
   double max_duration = 30.0;    ///< [s] give up after this much simulated time
   double record_interval = 0.0;  ///< [s] trajectory sample spacing; 0 = no trajectory
   void validate() const;
@@ -63,6 +80,11 @@ struct OutcomeRules {
   double settle_time = 0.3;
 };
 
+/// Checks `request`, resets `d`, sets the hole and launches the ball (simulate_putt's start, also
+/// fast_putt's replay). Throws `InputError` for a bad request, hole or start.
+void start_putt(const World& world, mjData* d, std::array<double, 2> hole,
+                const PuttRequest& request);
+
 /// Resets `d`, sets the hole, launches the ball from the tee and simulates. Deterministic: the
 /// same world, hole and request give the same bits.
 PuttOutcome simulate_putt(const World& world, mjData* d, std::array<double, 2> hole,
@@ -73,11 +95,21 @@ PuttOutcome simulate_putt(const World& world, mjData* d, std::array<double, 2> h
 class OutcomeTracker {
  public:
   OutcomeTracker(const World& world, const mjData* d, const OutcomeRules& rules);
+  /// The same without an `mjData` (fast_putt): the hole at `hole` [m] and the ball's first state,
+  /// `time` [s], centre `position` [m] and `velocity` [m/s] (3 each, world frame).
+  OutcomeTracker(const World& world, std::array<double, 2> hole, const OutcomeRules& rules,
+                 double time, const double* position, const double* velocity);
   /// Call after every physics step; returns true once the outcome is decided.
   bool update(const mjData* d);
+  /// The same from the ball's state (world frame, as above).
+  bool update(double time, const double* position, const double* velocity);
   PuttOutcome outcome() const { return outcome_; }
 
  private:
+  /// Lowest ground on a 21 x 21 grid over the lane [m]; computed at first need (only a ball
+  /// falling below some ground asks), so trackers stay cheap to make.
+  double lowest_z();
+
   const World* world_;
   OutcomeRules rules_;
   std::array<double, 2> hole_;
@@ -85,8 +117,9 @@ class OutcomeTracker {
   double rim_z_;
   double still_since_ = -1.0;
   double inside_since_ = -1.0;
-  double lowest_z_;
-  double heading_x_ = 1.0, heading_y_ = 0.0;  ///< last direction of travel (unit)
+  double corner_z_;  ///< ground at the grid's first point, an upper bound of lowest_z_
+  double lowest_z_ = std::numeric_limits<double>::quiet_NaN();  ///< NaN: not computed yet
+  double heading_x_ = 1.0, heading_y_ = 0.0;                    ///< last direction of travel (unit)
   bool reached_rim_ = false;
   PuttOutcome outcome_;
 };
