@@ -10,6 +10,7 @@
 
 #include "core/check.hpp"
 #include "core/error.hpp"
+#include "sim/fast_putt.hpp"
 #include "sim/putt.hpp"
 #include "system/parallel.hpp"
 
@@ -146,7 +147,7 @@ std::vector<Imagined> imagine(const system::System& system, std::array<double, 2
                        [&](int t, system::SystemData& data) {
                          const auto k = static_cast<std::size_t>(todo[static_cast<std::size_t>(t)]);
                          const sim::PuttOutcome p =
-                             sim::simulate_putt(world, data.ball.get(), hole, requests[k]);
+                             sim::fast_putt(world, data.ball.get(), hole, requests[k]);
                          Imagined m;
                          m.sunk = p.sunk;
                          m.left_lane = p.end == sim::PuttEnd::kLeftLane;

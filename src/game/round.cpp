@@ -144,9 +144,13 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         const double u = options.calibration_putts > 1
                              ? static_cast<double>(k) / (options.calibration_putts - 1)
                              : 0.5;
-        const double club = club_min + (club_max - club_min) * (0.1 + 0.8 * u);
+        const double club = club_min + (club_max - club_min) * (0.02 + 0.96 * u);
         control::FullPuttOptions o;
         o.seed = derive_seed(options.seed, 2000 + h * 64 + k);
+        // It sees the ball on the tee as it will see it everywhere: its skill knows that error.
+        if (options.vision_noise > 0.0)
+          o.perceived_ball_offset = {options.vision_noise * normal(rng),
+                                     options.vision_noise * normal(rng)};
         const auto r = system::arm_putt(*w.truth, *w.data, hole, 0.0, club, o);
         if (r.hit_refused || !r.hit) continue;
         const ArmLaunch a = arm_launch(field, r.ball_start, r.launch_state);

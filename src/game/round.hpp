@@ -31,11 +31,11 @@ Player parse_player(const std::string& text, const std::string& what);
 struct RoundOptions {
   Player player = Player::kRobot;
   std::uint64_t seed = 0;
-  int calibration_putts = 6;    ///< per field: the robot's learning putts (1..50)
+  int calibration_putts = 10;   ///< per field: the robot's learning putts (1..50)
   double vision_noise = 0.002;  ///< [m] std per axis of the robot's view of the ball per stroke
   /// The least launch error the robot plans under, whatever its skill's fit says [rad], [-].
   double min_angle_error = 0.002;
-  double min_speed_error = 0.006;
+  double min_speed_error = 0.01;
   PlannerOptions planner;
   void validate() const;
 };
