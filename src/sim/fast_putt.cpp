@@ -11,41 +11,6 @@
 
 namespace mg::sim {
 
-double detail::fast_atan(double x) {
-  static constexpr double kAtanHi[] = {4.63647609000806093515e-01, 7.85398163397448278999e-01,
-                                       9.82793723247329054082e-01, 1.57079632679489655800e+00};
-  static constexpr double kAtanLo[] = {2.26987774529616870924e-17, 3.06161699786838301793e-17,
-                                       1.39033110312309984516e-17, 6.12323399573676603587e-17};
-  static constexpr double kT[] = {
-      3.33333333333329318027e-01,  -1.99999999998764832476e-01, 1.42857142725034663711e-01,
-      -1.11111104054623557880e-01, 9.09088713343650656196e-02,  -7.69187620504482999495e-02,
-      6.66107313738753120669e-02,  -5.83357013379057348645e-02, 4.97687799461593236017e-02,
-      -3.65315727442169155270e-02, 1.62858201153657823623e-02};
-  if (std::isnan(x)) return x;
-  const bool negative = std::signbit(x);
-  double a = std::abs(x);
-  if (a >= 0x1p66) return negative ? -kAtanHi[3] : kAtanHi[3];
-  int id = -1;  // argument reduction to |a| < 7/16 around atan(0.5), atan(1), atan(1.5), pi/2
-  if (a >= 0.4375) {
-    if (a < 0.6875) {
-      id = 0, a = (2.0 * a - 1.0) / (2.0 + a);
-    } else if (a < 1.1875) {
-      id = 1, a = (a - 1.0) / (a + 1.0);
-    } else if (a < 2.4375) {
-      id = 2, a = (a - 1.5) / (1.0 + 1.5 * a);
-    } else {
-      id = 3, a = -1.0 / a;
-    }
-  }
-  const double z = a * a, w = z * z;
-  const double s1 =
-      z * (kT[0] + w * (kT[2] + w * (kT[4] + w * (kT[6] + w * (kT[8] + w * kT[10])))));
-  const double s2 = w * (kT[1] + w * (kT[3] + w * (kT[5] + w * (kT[7] + w * kT[9]))));
-  if (id < 0) return negative ? -(a - a * (s1 + s2)) : a - a * (s1 + s2);
-  const double r = kAtanHi[id] - ((a * (s1 + s2) - kAtanLo[id]) - a);
-  return negative ? -r : r;
-}
-
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -54,11 +19,9 @@ constexpr double kPi = 3.14159265358979323846;
 // The lane surface, compiled: height and gradient of the analytic terms in one pass, each
 // transcendental evaluated once and a pad's levelled height precomputed (field::Surface
 // recomputes both per call: 4-8x slower on the hill fields). Same formulas in the same order as
-// src/field/surface.cpp, so the same numbers up to an ulp (the arctangent is fdlibm's).
+// src/field/surface.cpp, so the same numbers up to an ulp.
 
 constexpr int kMaxTerms = 16;
-
-using detail::fast_atan;
 
 struct CompiledSurface {
   const field::Surface* generic = nullptr;  ///< heightmaps or many terms: the field's own code
@@ -100,14 +63,14 @@ void add_term(const field::SurfaceTerm& term, double x, double y, double& z, dou
     g[0] += dz_du * t->direction[0];
     g[1] += dz_du * t->direction[1];
   } else if (const auto* t = std::get_if<field::ArctanTerm>(&term)) {
-    const double ax = t->scale_x * (x - t->center[0]), atan_x = fast_atan(ax);
+    const double ax = t->scale_x * (x - t->center[0]), atan_x = std::atan(ax);
     const double dfx = t->amplitude * t->scale_x / (1.0 + ax * ax);
     if (t->scale_y == 0.0) {
       z += t->amplitude * atan_x * 1.0;
       g[0] += dfx;
       return;
     }
-    const double ay = t->scale_y * (y - t->center[1]), atan_y = fast_atan(ay);
+    const double ay = t->scale_y * (y - t->center[1]), atan_y = std::atan(ay);
     z += t->amplitude * atan_x * atan_y;
     g[0] += dfx * atan_y;
     g[1] += t->amplitude * atan_x * t->scale_y / (1.0 + ay * ay);

@@ -45,11 +45,4 @@ PuttOutcome fast_putt(const World& world, mjData* d, std::array<double, 2> hole,
                       const PuttRequest& request, const OutcomeRules& rules = {},
                       const FastPuttOptions& options = {});
 
-namespace detail {
-/// fdlibm's arctangent (FreeBSD msun s_atan.c; Sun Microsystems, freely redistributable): error
-/// under 1 ulp like libm's at a third of glibc's cost (glibc's correctly rounded atan was a third
-/// of the arctan field's planning time). Exposed for tests.
-double fast_atan(double x);
-}  // namespace detail
-
 }  // namespace mg::sim
