@@ -12,6 +12,8 @@ echo "== the robot playing (from $out/report.md)"
 sed -n '/^## The robot plays/,/^!\[success\]/p' "$out/report.md"
 echo "== the robot teaching itself, beside the baselines (from $out/report.md)"
 sed -n '/^## Beyond the thesis/,/^### Hindsight/p' "$out/report.md"
+echo "== a round of minigolf on every shipped course (from $out/report.md)"
+sed -n '/^## Beyond the thesis: a round of minigolf/,/^Mean strokes per hole/p' "$out/report.md"
 echo "== one putt by the arm on each field's shipped hole"
 $bin putt --field flat --angle 0.01 --speed 1.6
 $bin putt --field arctan --angle 0.03 --speed 1.65
