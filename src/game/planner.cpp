@@ -66,6 +66,24 @@ std::array<double, 2> world_identity(const system::System& system) {
   return {static_cast<double>(h >> 32), static_cast<double>(h & 0xffffffffull)};
 }
 
+/// `club` with its advance shortened (by quarters, to none) until the ball's launch point lies on
+/// the lane and clear of every obstacle: next to a wall the ball meets it in the club's first
+/// centimetres, which the imagined putt then simulates.
+sim::ClubLaunch clear_of_walls(const field::Field& f, std::array<double, 2> ball, double angle,
+                               sim::ClubLaunch club) {
+  const double r = f.ball.radius, full = club.advance;
+  for (int quarters = 4; quarters >= 0; --quarters) {
+    club.advance = full * quarters / 4.0;
+    const std::array<double, 2> p{ball[0] + club.advance * std::cos(angle),
+                                  ball[1] + club.advance * std::sin(angle)};
+    bool clear = p[0] >= f.bounds[0] + r && p[0] <= f.bounds[1] - r && p[1] >= f.bounds[2] + r &&
+                 p[1] <= f.bounds[3] - r;
+    for (const auto& o : f.obstacles) clear = clear && o.distance(p) >= r;
+    if (clear) return club;
+  }
+  return club;  // advance 0: the ball's own position, on the lane
+}
+
 /// How many cells either side a launch error of `sigma_cells` cells reaches (2 sigma, at most 6).
 int error_radius(double sigma_cells) {
   return std::min(6, static_cast<int>(std::ceil(2.0 * sigma_cells)));
@@ -132,7 +150,8 @@ std::vector<Imagined> imagine(const system::System& system, std::array<double, 2
     r.angle = launches[k][0];
     r.speed = launches[k][1];
     r.start = ball;
-    if (options.club_launch) r.club = options.club_launch(r.speed);
+    if (options.club_launch)
+      r.club = clear_of_walls(system.field(), ball, r.angle, options.club_launch(r.speed));
     const auto& c = r.club;
     keys[k] = {world_id[0],      world_id[1], ball[0],   ball[1],   r.angle,
                r.speed,          hole[0],     hole[1],   c.advance, c.lift,

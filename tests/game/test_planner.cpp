@@ -83,6 +83,24 @@ TEST(Planner, TheBlockedLineIsPlayedRoundTheBlock) {
   if (!out.sunk) EXPECT_LT(strokes_to_go(f, out.rest_position, false), 2.0);  // a clear next putt
 }
 
+TEST(Planner, AClubLaunchNextToAWallIsImaginedFromTheBall) {
+  // The club's launch starts the ball 5 cm along: beside a border or a wall that point is off
+  // the lane or inside the wall, and the imagined putt starts from the ball instead.
+  const auto sys = system_for("l-shape");
+  const auto& f = sys.field();
+  PlannerOptions o = quick();
+  o.club_launch = [](double u) {
+    sim::ClubLaunch c;
+    c.advance = 0.02 * u, c.lift = 0.003, c.vertical_speed = 0.1 * u;
+    return c;
+  };
+  for (const std::array<double, 2> ball : {std::array<double, 2>{f.bounds[0] + 0.03, 1.75},
+                                           std::array<double, 2>{1.0, 0.62 - 0.02 - 0.025}}) {
+    const StrokePlan p = plan_stroke(sys, ball, f.hole.position, {0.002, 0.01}, o);
+    EXPECT_TRUE(std::isfinite(p.expected_strokes));
+  }
+}
+
 TEST(Planner, BadRequestsAreInputErrors) {
   const auto sys = system_for("flat");
   const auto hole = sys.field().hole.position;
