@@ -31,34 +31,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Where the exported CSV files go: --data-dir, or a temporary folder removed afterwards.
-class DataDir {
- public:
-  explicit DataDir(const std::string& keep) {
-    if (!keep.empty()) {
-      path_ = keep;
-      ensure_output_dir(path_);
-      return;
-    }
-    std::string tmpl = (fs::temp_directory_path() / "minigolf-plot-XXXXXX").string();
-    if (!::mkdtemp(tmpl.data())) throw IoError("plot: cannot make a temporary folder");
-    path_ = tmpl;
-    temporary_ = true;
-  }
-  ~DataDir() {
-    std::error_code ec;
-    if (temporary_) fs::remove_all(path_, ec);
-  }
-  fs::path write(const std::string& name, const std::string& text) const {
-    write_file_atomic(path_ / name, text);
-    return path_ / name;
-  }
-
- private:
-  fs::path path_;
-  bool temporary_ = false;
-};
-
 struct DsArgs {
   std::string hitting_model, demos, plane = "xz", out, data_dir, speeds = "0.5,1.0,1.5";
 };
@@ -95,7 +67,7 @@ void add_plot_ds(CLI::App* plot) {
   cmd->callback([a] {
     const viz::DsPlane plane = viz::parse_ds_plane(a->plane);
     const DsInputs in = load_ds_inputs(*a);
-    const DataDir dir(a->data_dir);
+    const PlotDataDir dir(a->data_dir);
     const auto demos =
         dir.write("ds_demonstrations.csv", viz::demonstrations_csv(in.demos, in.model));
     const auto gmm = dir.write("ds_gmm.csv", viz::gmm_csv(in.model));
@@ -123,7 +95,7 @@ void add_plot_strength(CLI::App* plot) {
     for (const auto& s : parse_names("--speeds", a->speeds))
       speeds.push_back(parse_number("--speeds", s));
     const DsInputs in = load_ds_inputs(*a);
-    const DataDir dir(a->data_dir);
+    const PlotDataDir dir(a->data_dir);
     const auto strength = dir.write("strength.csv", viz::strength_csv(in.model, in.demos));
     const auto mods = dir.write("modulators.csv", viz::modulators_csv(in.model, in.demos, speeds));
     run_plot_script(
@@ -166,7 +138,7 @@ void add_plot_field(CLI::App* plot) {
     for (const auto& s : shots)
       if (!(s[1] > 0.0 && s[1] <= 10.0))
         throw InputError(fmt::format("--shot: speed {} m/s: expected (0, 10]", s[1]));
-    const DataDir dir(a->data_dir);
+    const PlotDataDir dir(a->data_dir);
     const auto heights = dir.write("field_heights.csv", viz::heights_csv(f));
     system::SystemData d(sys);
     std::string args;
@@ -214,7 +186,7 @@ void add_plot_model(CLI::App* plot) {
         model.output_names.end())
       throw InputError(fmt::format("--output '{}': the model's outputs are {}", output,
                                    fmt::join(model.output_names, ", ")));
-    const DataDir dir(a->data_dir);
+    const PlotDataDir dir(a->data_dir);
     const auto pred = dir.write("model_predictions.csv", viz::predictions_csv(model, data));
     std::string inputs;
     for (const auto& n : model.input_names) inputs += (inputs.empty() ? "" : ",") + n;

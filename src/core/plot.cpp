@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -34,6 +35,28 @@ void run_plot_script(const std::string& args, const std::string& png) {
   std::error_code ec;
   if (!fs::is_regular_file(png, ec) || fs::file_size(png, ec) == 0)
     throw Error(fmt::format("plot: {} was not written", shown_path(png)));
+}
+
+PlotDataDir::PlotDataDir(const std::filesystem::path& keep) {
+  if (!keep.empty()) {
+    ensure_output_dir(keep);
+    path_ = keep;
+    return;
+  }
+  std::string tmpl = (std::filesystem::temp_directory_path() / "minigolf-plot-XXXXXX").string();
+  if (!::mkdtemp(tmpl.data())) throw IoError("plot: cannot make a temporary folder");
+  path_ = tmpl;
+  temporary_ = true;
+}
+
+PlotDataDir::~PlotDataDir() {
+  std::error_code ec;
+  if (temporary_) std::filesystem::remove_all(path_, ec);
+}
+
+std::filesystem::path PlotDataDir::write(const std::string& name, const std::string& text) const {
+  write_file_atomic(path_ / name, text);
+  return path_ / name;
 }
 
 }  // namespace mg

@@ -82,20 +82,6 @@ struct GradientVisitor {
   std::array<double, 2> operator()(const FlattenTerm&) const { return {0.0, 0.0}; }
 };
 
-/// The pad's weight w(r) and dw/dr: 1 inside `radius`, a cubic smoothstep down to 0 at
-/// `blend_radius` (C1: w' = 0 at both ends).
-void pad_weight(const FlattenTerm& t, double r, double& w, double& dw_dr) {
-  if (r <= t.radius) {
-    w = 1.0, dw_dr = 0.0;
-  } else if (r >= t.blend_radius) {
-    w = 0.0, dw_dr = 0.0;
-  } else {
-    const double width = t.blend_radius - t.radius, s = (r - t.radius) / width;
-    w = 1.0 - s * s * (3.0 - 2.0 * s);
-    dw_dr = -6.0 * s * (1.0 - s) / width;
-  }
-}
-
 HeightmapTerm load_png_heightmap(const std::string& path, double z_min, double z_max) {
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
@@ -137,6 +123,18 @@ HeightmapTerm load_csv_heightmap(const std::string& path) {
 }
 
 }  // namespace
+
+void pad_weight(const FlattenTerm& t, double r, double& w, double& dw_dr) {
+  if (r <= t.radius) {
+    w = 1.0, dw_dr = 0.0;
+  } else if (r >= t.blend_radius) {
+    w = 0.0, dw_dr = 0.0;
+  } else {
+    const double width = t.blend_radius - t.radius, s = (r - t.radius) / width;
+    w = 1.0 - s * s * (3.0 - 2.0 * s);
+    dw_dr = -6.0 * s * (1.0 - s) / width;
+  }
+}
 
 double Surface::partial_height(std::size_t n, double x, double y) const {
   double z = 0.0;

@@ -64,6 +64,10 @@ struct FlattenTerm {
   double blend_radius = 0.1;               ///< [m] unchanged surface outside (> radius)
 };
 
+/// The pad's weight w(r) and dw/dr: 1 inside `radius`, a cubic smoothstep down to 0 at
+/// `blend_radius` (C1: w' = 0 at both ends).
+void pad_weight(const FlattenTerm& t, double r, double& w, double& dw_dr);
+
 using SurfaceTerm =
     std::variant<PlaneTerm, BumpTerm, HillTerm, ArctanTerm, HeightmapTerm, FlattenTerm>;
 

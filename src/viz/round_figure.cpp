@@ -18,36 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The CSVs' folder: `keep`, or a temporary one removed afterwards.
-class CsvFolder {
- public:
-  explicit CsvFolder(const fs::path& keep) {
-    if (!keep.empty()) {
-      ensure_output_dir(keep);
-      path_ = keep;
-      return;
-    }
-    std::string tmpl = (fs::temp_directory_path() / "minigolf-round-XXXXXX").string();
-    if (!::mkdtemp(tmpl.data())) throw IoError("plot round: cannot make a temporary folder");
-    path_ = tmpl;
-    temporary_ = true;
-  }
-  ~CsvFolder() {
-    std::error_code ec;
-    if (temporary_) fs::remove_all(path_, ec);
-  }
-  CsvFolder(const CsvFolder&) = delete;
-  CsvFolder& operator=(const CsvFolder&) = delete;
-  fs::path write(const std::string& name, const std::string& text) const {
-    write_file_atomic(path_ / name, text);
-    return path_ / name;
-  }
-
- private:
-  fs::path path_;
-  bool temporary_ = false;
-};
-
 void check_rounds(const game::Course& course, const std::vector<game::RoundResult>& rounds) {
   if (rounds.empty()) throw InputError("plot round: no rounds to draw");
   for (std::size_t r = 0; r < rounds.size(); ++r) {
@@ -119,7 +89,7 @@ std::vector<fs::path> plot_round_holes(const game::Course& course,
   if (stem.empty() || stem.find('/') != std::string::npos)
     throw InputError(fmt::format("plot round: stem '{}': expected a file name without '/'", stem));
   ensure_output_dir(out_dir);
-  const CsvFolder dir(data_dir);
+  const PlotDataDir dir(data_dir);
   std::vector<fs::path> written;
   for (std::size_t h = 0; h < course.holes.size(); ++h) {
     const game::CourseHole& ch = course.holes[h];
