@@ -82,8 +82,7 @@ void run_compare(const Args& a) {
   if (!a.out.empty()) check_output_file(a.out);
   const auto config = system::load_config(a.system.config, "", a.system.hitting_model);
   const plant::Plant plant = load_plant_arg(a.system.plant);
-  const std::vector<game::Player> players{game::Player::kRobot, game::Player::kOracle,
-                                          game::Player::kGreedy};
+  const std::vector<game::Player> players = game::comparison_players();
   const int rounds = static_cast<int>(courses.size() * players.size()) * a.seeds;
   Progress progress("play --compare", rounds);
   std::vector<game::CourseRounds> all;
@@ -109,8 +108,10 @@ void add_round_command(CLI::App& app) {
                   "--compare)")
       ->required()
       ->delimiter(',');
-  cmd->add_option("--player", a->player, "robot (the arm, its own model), oracle or greedy")
-      ->check(CLI::IsMember({"robot", "oracle", "greedy"}))
+  cmd->add_option("--player", a->player,
+                  "robot (the arm, its own model), oracle (the true world, the arm's precision), "
+                  "exact-oracle (exact execution) or greedy")
+      ->check(CLI::IsMember({"robot", "oracle", "exact-oracle", "greedy"}))
       ->capture_default_str();
   cmd->add_option("--learner", a->learner,
                   "How the robot learns its skill on each field: self-teach (its own putts)")

@@ -22,8 +22,7 @@ RoundStudy round_study(const RoundStudyOptions& o, const std::filesystem::path& 
   base.calibration_putts = o.budget;
   base.planner.threads = o.threads;
   base.validate();
-  const std::vector<game::Player> players{game::Player::kRobot, game::Player::kOracle,
-                                          game::Player::kGreedy};
+  const std::vector<game::Player> players = game::comparison_players();
   RoundStudy study;
   for (const auto& course : courses) {
     study.rounds.push_back(game::play_seeds(

@@ -37,14 +37,15 @@ std::vector<double> speed_ladder(const PlannerOptions& o, int every = 1) {
   return s;
 }
 
-void run_block(const system::System& system, std::array<double, 2> ball, std::array<double, 2> hole,
-               Block& b, const PlannerOptions& o, ImaginedCache* cache, int& simulated) {
+void run_block(const system::System& system, const LaneRegion& region, std::array<double, 2> ball,
+               std::array<double, 2> hole, Block& b, const PlannerOptions& o, ImaginedCache* cache,
+               int& simulated) {
   std::vector<std::array<double, 2>> launches;
   launches.reserve(b.angles.size() * b.speeds.size());
   for (double a : b.angles)
     for (double s : b.speeds) launches.push_back({wrap(a), s});
   int n = 0;
-  b.out = imagine(system, ball, hole, launches, o, cache, &n);
+  b.out = imagine(system, region, ball, hole, launches, o, cache, &n);
   simulated += n;
 }
 
@@ -138,8 +139,8 @@ void ImaginedCache::store(const Key& key, const Imagined& value) {
   map_.emplace(key, value);
 }
 
-std::vector<Imagined> imagine(const system::System& system, std::array<double, 2> ball,
-                              std::array<double, 2> hole,
+std::vector<Imagined> imagine(const system::System& system, const LaneRegion& region,
+                              std::array<double, 2> ball, std::array<double, 2> hole,
                               const std::vector<std::array<double, 2>>& launches,
                               const PlannerOptions& options, ImaginedCache* cache, int* simulated) {
   const auto world_id = world_identity(system);
@@ -169,7 +170,8 @@ std::vector<Imagined> imagine(const system::System& system, std::array<double, 2
                              sim::fast_putt(world, data.ball.get(), hole, requests[k]);
                          Imagined m;
                          m.sunk = p.sunk;
-                         m.left_lane = p.end == sim::PuttEnd::kLeftLane;
+                         m.left_lane = p.end == sim::PuttEnd::kLeftLane ||
+                                       (!p.sunk && !region.contains(p.rest_position));
                          m.rest = p.rest_position;
                          m.closest_approach = p.closest_approach;
                          out[k] = m;
@@ -241,6 +243,7 @@ StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
   const field::Field& field = system.field();
   system::check_ball_position(field, ball, "ball");
   field::check_hole_position(field, hole);
+  const LaneRegion region(field, hole);
   int simulated = 0;
   std::vector<Candidate> cells;  // every coarse cell, scored on its own grid
   double best_p = 0.0;
@@ -257,7 +260,7 @@ StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
   const int k = static_cast<int>(std::lround(kDirectSpan / kFineStep));
   for (int i = -k; i <= k; ++i) d.angles.push_back(direct + i * kFineStep);
   d.speeds = speed_ladder(options);
-  run_block(system, ball, hole, d, options, cache, simulated);
+  run_block(system, region, ball, hole, d, options, cache, simulated);
   collect(d, false);
   if (best_p < options.accept_probability) {
     // All round, coarse (exact execution assumed there: its cells are too far apart to smooth
@@ -267,7 +270,7 @@ StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
     for (int i = 0; i < n; ++i) c.angles.push_back(direct + kPi * (2.0 * i / n - 1.0));
     c.speeds = speed_ladder(options, 2);
     c.bank = true;
-    run_block(system, ball, hole, c, options, cache, simulated);
+    run_block(system, region, ball, hole, c, options, cache, simulated);
     collect(c, true);
     std::vector<std::pair<double, double>> near;  // (closest approach, angle)
     for (std::size_t i = 0; i < c.angles.size(); ++i) {
@@ -291,7 +294,7 @@ StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
       for (int i = -kr; i <= kr; ++i) r.angles.push_back(centre + i * kFineStep);
       r.speeds = speed_ladder(options);
       r.bank = true;
-      run_block(system, ball, hole, r, options, cache, simulated);
+      run_block(system, region, ball, hole, r, options, cache, simulated);
       collect(r, false);
     }
   }
@@ -313,7 +316,7 @@ StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
   best.expected_strokes = std::numeric_limits<double>::infinity();
   for (const Candidate& c : picked) {
     Block f = fine_block(c, error);
-    run_block(system, ball, hole, f, options, cache, simulated);
+    run_block(system, region, ball, hole, f, options, cache, simulated);
     // Only cells whose error neighbourhood lies inside the block are judged.
     const int ra = error_radius(error.angle / std::abs(f.angles[1] - f.angles[0]));
     const int rs = error_radius(error.speed / std::log(f.speeds[1] / f.speeds[0]));

@@ -25,6 +25,8 @@
 #include <vector>
 
 #include "field/field.hpp"
+#include "game/lane_region.hpp"
+#include "game/launch.hpp"
 #include "sim/putt.hpp"
 #include "system/system.hpp"
 
@@ -33,16 +35,9 @@ namespace mg::game {
 /// What the search needs of an imagined putt.
 struct Imagined {
   bool sunk = false;
-  bool left_lane = false;
+  bool left_lane = false;  ///< left the lane or stopped out of play (game/lane_region.hpp)
   std::array<double, 2> rest{0, 0};  ///< [m]
   double closest_approach = 0.0;     ///< [m]
-};
-
-/// A launch's error as the player knows it: std of the launch angle [rad] and of the launch
-/// speed relative to its aim [-]. Zero: exact execution (the oracle).
-struct LaunchError {
-  double angle = 0.0;
-  double speed = 0.0;
 };
 
 struct PlannerOptions {
@@ -91,9 +86,10 @@ class ImaginedCache {
 };
 
 /// Ball-only putts in `system`'s ball world from `ball`, simulated (the fast planning path) in
-/// parallel; results by index (the same bits for any thread count).
-std::vector<Imagined> imagine(const system::System& system, std::array<double, 2> ball,
-                              std::array<double, 2> hole,
+/// parallel; results by index (the same bits for any thread count). `region`: the lane's part in
+/// play for `hole`.
+std::vector<Imagined> imagine(const system::System& system, const LaneRegion& region,
+                              std::array<double, 2> ball, std::array<double, 2> hole,
                               const std::vector<std::array<double, 2>>& launches,
                               const PlannerOptions& options, ImaginedCache* cache, int* simulated);
 

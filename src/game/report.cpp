@@ -105,6 +105,10 @@ CourseRounds play_seeds(const Course& course, const control::ModuleConfig& confi
   return c;
 }
 
+std::vector<Player> comparison_players() {
+  return {Player::kRobot, Player::kOracle, Player::kExactOracle, Player::kGreedy};
+}
+
 PlayerSummary summarize(const std::vector<CourseRounds>& all, Player player) {
   PlayerSummary s;
   s.player = player;

@@ -20,6 +20,10 @@ nlohmann::json round_json(const RoundResult& round);
 /// One row per stroke: hole,field,par,stroke,ball_x,ball_y,angle,speed,rest_x,rest_y,sunk,left_lane
 std::string round_csv(const RoundResult& round);
 
+/// The players of a comparison (`play --compare`, `reproduce`): robot, oracle, exact-oracle,
+/// greedy.
+std::vector<Player> comparison_players();
+
 /// Rounds of one course by several players over consecutive seeds.
 struct CourseRounds {
   Course course;

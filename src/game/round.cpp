@@ -10,6 +10,8 @@
 #include "core/check.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "game/lane_region.hpp"
+#include "game/launch.hpp"
 #include "game/skill.hpp"
 #include "sim/putt.hpp"
 
@@ -18,33 +20,6 @@ namespace {
 
 constexpr double kPathInterval = 0.01;  // [s] between recorded path points
 constexpr double kPi = 3.14159265358979323846;
-
-/// The launch the arm gave, in the terms of an imagined putt's request: horizontal direction
-/// [rad, world], speed along the surface at the start [m/s] and the club's extras, from the ball's
-/// state when the launch was measured (seen on the robot's own model of the field).
-struct ArmLaunch {
-  double angle = 0.0, speed = 0.0;
-  sim::ClubLaunch club;
-};
-
-ArmLaunch arm_launch(const field::Field& f, std::array<double, 2> start, const sim::BallState& s) {
-  ArmLaunch a;
-  const double vx = s.qvel[0], vy = s.qvel[1], vz = s.qvel[2];
-  const double vh = std::hypot(vx, vy);
-  a.angle = std::atan2(vy, vx);
-  const double cx = std::cos(a.angle), cy = std::sin(a.angle);
-  const auto g = f.surface.gradient(start[0], start[1]);
-  const double cz = g[0] * cx + g[1] * cy;  // as sim::start_putt launches along the surface
-  a.speed = vh * std::sqrt(1.0 + cz * cz);
-  a.club.advance = (s.qpos[0] - start[0]) * cx + (s.qpos[1] - start[1]) * cy;
-  a.club.lift = std::max(0.0, s.qpos[2] - f.height(s.qpos[0], s.qpos[1]) - f.ball.radius);
-  a.club.vertical_speed = vz - cz * vh;
-  // Angular velocity: body frame -> world (the orientation quaternion) -> launch frame.
-  mjtNum w_body[3] = {s.qvel[3], s.qvel[4], s.qvel[5]}, w[3];
-  mju_rotVecQuat(w, w_body, s.qpos.data() + 3);
-  a.club.spin = {cx * w[0] + cy * w[1], -cy * w[0] + cx * w[1], w[2]};
-  return a;
-}
 
 /// Per field: the belief (the robot's model: the field file, no plant), the truth, the skill.
 struct HoleWorlds {
@@ -65,6 +40,8 @@ std::string to_string(Player player) {
       return "robot";
     case Player::kOracle:
       return "oracle";
+    case Player::kExactOracle:
+      return "exact-oracle";
     case Player::kGreedy:
       return "greedy";
   }
@@ -72,10 +49,10 @@ std::string to_string(Player player) {
 }
 
 Player parse_player(const std::string& text, const std::string& what) {
-  for (Player p : {Player::kRobot, Player::kOracle, Player::kGreedy})
+  for (Player p : {Player::kRobot, Player::kOracle, Player::kExactOracle, Player::kGreedy})
     if (text == to_string(p)) return p;
-  throw InputError(
-      fmt::format("{}: unknown player '{}' (expected robot, oracle or greedy)", what, text));
+  throw InputError(fmt::format(
+      "{}: unknown player '{}' (expected robot, oracle, exact-oracle or greedy)", what, text));
 }
 
 void RoundOptions::validate() const {
@@ -85,6 +62,8 @@ void RoundOptions::validate() const {
   require_in_range("vision_noise", vision_noise, 0.0, 0.05);
   require_in_range("min_angle_error", min_angle_error, 0.0, 0.5);
   require_in_range("min_speed_error", min_speed_error, 0.0, 0.5);
+  require_in_range("oracle_error.angle", oracle_error.angle, 0.0, 0.5);
+  require_in_range("oracle_error.speed", oracle_error.speed, 0.0, 0.5);
   planner.validate();
 }
 
@@ -131,6 +110,7 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
     w.data = std::make_unique<system::SystemData>(*w.truth);
     const field::Field& field = w.belief->field();
     const auto hole = field.hole.position;
+    const LaneRegion region(field, hole);
     const control::ModuleConfig& mc = w.belief->module().config();
     const double club_min = mc.speed_min, club_max = std::min(mc.speed_max, mc.arm_speed_cap);
     Rng rng(derive_seed(options.seed, 1000 + h));
@@ -138,7 +118,8 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
 
     // The robot's skill on this field: its own putts from the tee at a ladder of club speeds.
     LaunchSkill skill;
-    const bool uses_arm = options.player != Player::kOracle;
+    const bool oracle = options.player == Player::kOracle || options.player == Player::kExactOracle;
+    const bool uses_arm = !oracle;
     if (uses_arm) {
       for (int k = 0; k < options.calibration_putts; ++k) {
         const double u = options.calibration_putts > 1
@@ -189,7 +170,7 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         for (int j = 0; j < po.speeds; ++j)
           launches.push_back({direct, po.speed_min * std::pow(q, j)});
         int n = 0;
-        const auto out = imagine(*w.belief, seen, hole, launches, po, cache, &n);
+        const auto out = imagine(*w.belief, region, seen, hole, launches, po, cache, &n);
         result.imagined_putts += n;
         double best = 1e9;
         for (std::size_t j = 0; j < out.size(); ++j) {
@@ -198,9 +179,10 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
           if (e < best) best = e, plan.angle = direct, plan.speed = launches[j][1];
         }
       } else {
-        const bool oracle = options.player == Player::kOracle;
         LaunchError err;
-        if (!oracle)
+        if (options.player == Player::kOracle)
+          err = options.oracle_error;
+        else if (!oracle)
           err = {std::max(options.min_angle_error, skill.angle_std()),
                  std::max(options.min_speed_error, skill.speed_std())};
         plan = plan_stroke(oracle ? *w.truth : *w.belief, seen, hole, err, po, cache);
@@ -213,9 +195,12 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
 
       sim::PuttOutcome out;
       if (!uses_arm) {
-        out =
-            system::ball_putt(*w.truth, *w.data, hole, plan.angle, plan.speed, kPathInterval, ball);
-        s.launch = {plan.angle, plan.speed};
+        // The oracle's launch error: drawn after planning, so its plans do not depend on it.
+        const auto& e = options.player == Player::kOracle ? options.oracle_error : LaunchError{};
+        const double angle = plan.angle + e.angle * normal(rng);
+        const double speed = plan.speed * std::exp(e.speed * normal(rng));
+        out = system::ball_putt(*w.truth, *w.data, hole, angle, speed, kPathInterval, ball);
+        s.launch = {angle, speed};
       } else {
         control::FullPuttOptions o;
         o.seed = derive_seed(options.seed, 3000 + h * 64 + static_cast<std::uint64_t>(hr.strokes));
@@ -242,14 +227,17 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
       ++hr.strokes;
       s.sunk = out.sunk;
       s.rest = out.rest_position;
-      s.left_lane = out.end == sim::PuttEnd::kLeftLane || !on_lane(field, out.rest_position);
       for (const auto& p : out.trajectory) s.path.push_back({p.x, p.y});
+      s.left_lane =
+          !out.sunk && (out.end == sim::PuttEnd::kLeftLane || !on_lane(field, out.rest_position) ||
+                        !region.contains(out.rest_position));
       hr.sunk = out.sunk;
       if (!hr.sunk) {
         ball = out.rest_position;
         if (s.left_lane) {
-          ball = replace_ball(field, ball);
-          ++hr.strokes;  // the penalty stroke
+          ball = replace_ball(field, region.last_in_play(s.path, s.ball));
+          if (!region.contains(ball)) ball = s.ball;  // put back where it was played from
+          ++hr.strokes;                               // the penalty stroke
         } else {
           try {
             system::check_ball_position(field, ball, "ball");

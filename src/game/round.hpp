@@ -6,11 +6,14 @@
 ///   world): the base stands beside the ball facing the planned launch direction, and its launch
 ///   skill (calibrated with its own putts from the tee, counted as learning putts, and refined by
 ///   every stroke it plays) turns the launch into a club request.
-/// - oracle: plans in the true world with exact execution and plays ball-only putts there (the
-///   best a planner of this search can do; the baseline).
+/// - oracle: plans in the true world and plays ball-only putts there, launched with the arm's
+///   measured precision (`oracle_error`): the best a planner of this search can do with this
+///   arm; the baseline.
+/// - exact-oracle: the oracle with exact execution (no robot launches bit-exactly; a reference).
 /// - greedy: aims the arm at the hole with the speed whose imagined putt ends nearest the hole.
-/// A ball that leaves the lane is put back where it left (pulled a ball radius + 1 cm inside the
-/// borders and off any obstacle) with one penalty stroke; a hole ends when sunk or at
+/// A ball out of play (it left the lane, or stopped in a part of it walled off from the hole:
+/// game/lane_region.hpp) is put back at the last point of its path in play (pulled a ball radius
+/// + 1 cm off borders and obstacles) with one penalty stroke; a hole ends when sunk or at
 /// `max_strokes` strokes, penalties included.
 #include <array>
 #include <functional>
@@ -23,9 +26,9 @@
 
 namespace mg::game {
 
-enum class Player { kRobot, kOracle, kGreedy };
+enum class Player { kRobot, kOracle, kExactOracle, kGreedy };
 std::string to_string(Player player);
-/// "robot", "oracle" or "greedy"; throws InputError naming `what` otherwise.
+/// "robot", "oracle", "exact-oracle" or "greedy"; throws InputError naming `what` otherwise.
 Player parse_player(const std::string& text, const std::string& what);
 
 struct RoundOptions {
@@ -36,6 +39,9 @@ struct RoundOptions {
   /// The least launch error the robot plans under, whatever its skill's fit says [rad], [-].
   double min_angle_error = 0.002;
   double min_speed_error = 0.01;
+  /// The oracle's launch error (std of angle [rad] and relative speed [-]): the arm's launch
+  /// repeatability under `vision_noise`, measured by bench/game/launch_precision.
+  LaunchError oracle_error{0.0005, 0.007};
   PlannerOptions planner;
   void validate() const;
 };

@@ -65,6 +65,23 @@ TEST(Round, TheOracleFinishesAFlatHoleAndTheSameSeedGivesTheSameBits) {
   EXPECT_FALSE(a.holes[0].putts[0].path.empty());
 }
 
+TEST(Round, TheOracleLaunchesWithTheArmsErrorTheExactOracleExactly) {
+  const Course c = one_hole("flat", {0.2, -0.1}, {1.6, 0.2});
+  const auto config = system::load_config("", "flat");
+  const RoundResult exact = play_round(c, config, {}, quick(Player::kExactOracle));
+  const RoundOptions o = quick(Player::kOracle, 5);
+  const RoundResult noisy = play_round(c, config, {}, o);
+  const StrokeRecord& e = exact.holes[0].putts[0];
+  EXPECT_EQ(e.launch, (std::array<double, 2>{e.angle, e.speed}));
+  const StrokeRecord& n = noisy.holes[0].putts[0];
+  EXPECT_NE(n.launch, (std::array<double, 2>{n.angle, n.speed}));
+  EXPECT_LT(std::abs(n.launch[0] - n.angle), 5.0 * o.oracle_error.angle);
+  EXPECT_LT(std::abs(std::log(n.launch[1] / n.speed)), 5.0 * o.oracle_error.speed);
+  // It plans knowing its error: a surer cell than the knife's edge, still the direct putt.
+  EXPECT_GT(n.sink_probability, 0.5);
+  EXPECT_FALSE(n.bank);
+}
+
 TEST(Round, TheRobotHitsWithTheArmAndCountsItsLearningPutts) {
   const Course c = one_hole("flat", {0.2, 0.1}, {1.5, -0.2});
   const auto config = system::load_config("", "flat");
@@ -101,12 +118,17 @@ TEST(Round, MaxStrokesEndsTheHole) {
 
 TEST(Round, PlayersParseAndBadOptionsAreInputErrors) {
   EXPECT_EQ(parse_player("oracle", "--player"), Player::kOracle);
+  EXPECT_EQ(parse_player("exact-oracle", "--player"), Player::kExactOracle);
+  EXPECT_EQ(to_string(Player::kExactOracle), "exact-oracle");
   EXPECT_THROW(parse_player("tiger", "--player"), InputError);
   RoundOptions o;
   o.calibration_putts = 51;
   EXPECT_THROW(o.validate(), InputError);
   o = {};
   o.vision_noise = std::nan("");
+  EXPECT_THROW(o.validate(), InputError);
+  o = {};
+  o.oracle_error.speed = -0.1;
   EXPECT_THROW(o.validate(), InputError);
 }
 
