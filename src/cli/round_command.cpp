@@ -1,7 +1,10 @@
-// play --course COURSE [--player robot|oracle|greedy] [--learner self-teach --budget N]
-//      [--seed S] [--plant P] [--config F] [--hitting-model F] [--threads N] [--json] [-o CSV]
+// play --course COURSE [--player robot|oracle|exact-oracle|greedy] [--learner self-teach --budget
+// N]
+//      [--model FIELD=FILE] [--seed S] [--plant P] [--config F] [--hitting-model F] [--threads N]
+//      [--json] [-o CSV]
 // play --course COURSE[,COURSE...] --compare [--seeds N] [-o MARKDOWN]
 // A round of minigolf (game/round.hpp, docs/play.md).
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +17,7 @@
 #include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "experiments/evaluate.hpp"
 #include "game/report.hpp"
 #include "system/system.hpp"
 
@@ -30,8 +34,26 @@ struct Args {
   bool compare = false;
   bool json = false;
   std::string out;
+  std::vector<std::string> models;  ///< FIELD=FILE
   SystemArgs system;
 };
+
+/// --model FIELD=FILE: the robot's learned model for the holes on FIELD (a name or a file).
+std::map<std::string, game::HitModel> load_round_models(const std::vector<std::string>& specs) {
+  std::map<std::string, game::HitModel> models;
+  for (const auto& spec : specs) {
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
+      throw InputError(fmt::format("--model: expected FIELD=FILE, got '{}'", spec));
+    const field::Field field = field::load_field(spec.substr(0, eq));
+    const std::string file = spec.substr(eq + 1);
+    auto model = std::make_shared<const learning::Model>(learning::load_model(file));
+    experiments::check_playable_model(*model, file);
+    if (!models.emplace(field.name, experiments::round_hit_model(model, field)).second)
+      throw InputError(fmt::format("--model: two models for field '{}'", field.name));
+  }
+  return models;
+}
 
 game::RoundOptions round_options(const Args& a) {
   game::RoundOptions o;
@@ -39,6 +61,9 @@ game::RoundOptions round_options(const Args& a) {
   o.seed = a.seed;
   o.calibration_putts = a.budget;
   o.planner.threads = a.system.threads;
+  if (!a.models.empty() && o.player != game::Player::kRobot)
+    throw InputError("--model: only the robot player plays a learned model");
+  o.models = load_round_models(a.models);
   o.validate();
   return o;
 }
@@ -117,6 +142,11 @@ void add_round_command(CLI::App& app) {
                   "How the robot learns its skill on each field: self-teach (its own putts)")
       ->check(CLI::IsMember({"self-teach"}))
       ->capture_default_str();
+  cmd->add_option("--model", a->models,
+                  "FIELD=FILE: the robot's learned model (minigolf train) for the holes on FIELD; "
+                  "it plays a stroke when its hit sinks surely in the robot's model of the field "
+                  "(several: repeat or comma-separate)")
+      ->delimiter(',');
   cmd->add_option("--seed", a->seed, "Seed (vision error, execution)")
       ->check(unsigned_integer())
       ->capture_default_str();

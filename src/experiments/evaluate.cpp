@@ -85,6 +85,27 @@ std::vector<Prediction> predict_hits(const learning::Model& model, const field::
   return out;
 }
 
+game::HitModel round_hit_model(std::shared_ptr<const learning::Model> model,
+                               const field::Field& field) {
+  if (!model) throw InputError("round model: no model");
+  check_playable_model(*model, "model");
+  bool absolute = false;
+  for (const auto& n : model->input_names) absolute = absolute || n == "hole_x" || n == "hole_y";
+  constexpr double kTeeTolerance = 0.01;  // [m]
+  return [model, field, absolute](std::array<double, 2> ball,
+                                  std::array<double, 2> hole) -> std::optional<game::ModelHit> {
+    if (absolute && std::hypot(ball[0] - field.tee[0], ball[1] - field.tee[1]) > kTeeTolerance)
+      return std::nullopt;
+    const std::array<double, 2> h = absolute
+                                        ? hole
+                                        : std::array<double, 2>{field.tee[0] + hole[0] - ball[0],
+                                                                field.tee[1] + hole[1] - ball[1]};
+    const Prediction p = predict_hits(*model, field, {h}).front();
+    if (!std::isfinite(p.angle) || !std::isfinite(p.speed)) return std::nullopt;
+    return game::ModelHit{p.angle, p.speed};
+  };
+}
+
 void EvaluateOptions::validate() const {
   if (situations < 1 || situations > 100000)
     throw InputError(fmt::format("--situations: expected 1..100000, got {}", situations));

@@ -6,10 +6,12 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "field/situations.hpp"
+#include "game/round.hpp"
 #include "learning/learner.hpp"
 #include "system/system.hpp"
 #include "teacher/teacher.hpp"
@@ -32,6 +34,14 @@ std::vector<Prediction> predict_hits(const learning::Model& model, const field::
 /// speed is a finite club speed > 0, inside `system`'s safe envelope when one is given.
 void check_playable_model(const learning::Model& model, const std::string& source,
                           const system::System* system = nullptr);
+
+/// A learned model as a round plays it (game::RoundOptions::models, `play --model`): its inputs
+/// as the robot standing at the ball facing +x sees the hole. A model over xi (hole - tee) is
+/// asked for xi = hole - ball, from anywhere (the round judges each hit in its model of the field
+/// before playing it); a model over hole_x, hole_y only with the ball within 1 cm of `field`'s
+/// tee (the tee it was trained from). Throws InputError as check_playable_model.
+game::HitModel round_hit_model(std::shared_ptr<const learning::Model> model,
+                               const field::Field& field);
 
 /// How `evaluate --learn` learns while playing.
 enum class LearnMode {

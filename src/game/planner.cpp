@@ -234,6 +234,26 @@ Block fine_block(const Candidate& c, const LaunchError& e) {
 
 }  // namespace
 
+LaunchJudgement judge_launch(const system::System& system, std::array<double, 2> ball,
+                             std::array<double, 2> hole, double angle, double speed,
+                             const LaunchError& error, const PlannerOptions& options,
+                             ImaginedCache* cache) {
+  options.validate();
+  require_finite("launch angle", angle);
+  require_in_range("launch speed", speed, 0.0, 10.0);
+  const field::Field& field = system.field();
+  system::check_ball_position(field, ball, "ball");
+  field::check_hole_position(field, hole);
+  const LaneRegion region(field, hole);
+  Block f = fine_block({0.0, 0.0, angle, speed, false}, error);
+  LaunchJudgement j;
+  run_block(system, region, ball, hole, f, options, cache, j.imagined_putts);
+  const auto [e, p] = score(field, f, kRefineHalfCells, kRefineHalfCells, error);
+  j.expected_strokes = e;
+  j.sink_probability = p;
+  return j;
+}
+
 StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
                        std::array<double, 2> hole, const LaunchError& error,
                        const PlannerOptions& options, ImaginedCache* cache) {

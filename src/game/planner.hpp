@@ -100,6 +100,18 @@ double strokes_to_go(const field::Field& field, std::array<double, 2> rest, bool
 bool line_blocked(const field::Field& field, std::array<double, 2> a, std::array<double, 2> b,
                   double clearance);
 
+/// One launch judged as plan_stroke judges its candidates (its neighbours on a fine grid at the
+/// scale of `error`): expected strokes to finish the hole and sink probability.
+struct LaunchJudgement {
+  double expected_strokes = 0.0;
+  double sink_probability = 0.0;
+  int imagined_putts = 0;
+};
+LaunchJudgement judge_launch(const system::System& system, std::array<double, 2> ball,
+                             std::array<double, 2> hole, double angle, double speed,
+                             const LaunchError& error, const PlannerOptions& options,
+                             ImaginedCache* cache = nullptr);
+
 /// The best stroke from `ball` to `hole` in `system`'s ball world under `error`.
 StrokePlan plan_stroke(const system::System& system, std::array<double, 2> ball,
                        std::array<double, 2> hole, const LaunchError& error,

@@ -54,6 +54,7 @@ nlohmann::json round_json(const RoundResult& r) {
                        {"sunk", p.sunk},
                        {"left_lane", p.left_lane},
                        {"bank", p.bank},
+                       {"model", p.model},
                        {"sink_probability", p.sink_probability}});
     holes.push_back({{"field", h.field},
                      {"par", h.par},

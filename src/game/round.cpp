@@ -141,6 +141,11 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
       if (skill.size() == 0)
         throw NumericalError(fmt::format("{}: no calibration putt hit the ball", field.name));
     }
+    const auto model_it = options.models.find(field.name);
+    const HitModel* model =
+        options.player == Player::kRobot && model_it != options.models.end() && model_it->second
+            ? &model_it->second
+            : nullptr;
     PlannerOptions po = options.planner;
     if (uses_arm) {  // only the launches the arm can give
       po.speed_min = std::max(po.speed_min, skill.launch_speed(club_min * 1.02));
@@ -163,6 +168,7 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
                 ball[1] + options.vision_noise * normal(rng)};
       seen = replace_ball(field, seen);
       StrokePlan plan;
+      std::optional<ModelHit> model_hit;  // the learned model's hit, when it plays this stroke
       if (options.player == Player::kGreedy) {
         const double direct = std::atan2(hole[1] - seen[1], hole[0] - seen[0]);
         std::vector<std::array<double, 2>> launches;
@@ -185,13 +191,39 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         else if (!oracle)
           err = {std::max(options.min_angle_error, skill.angle_std()),
                  std::max(options.min_speed_error, skill.speed_std())};
-        plan = plan_stroke(oracle ? *w.truth : *w.belief, seen, hole, err, po, cache);
-        result.imagined_putts += plan.imagined_putts;
+        std::optional<ModelHit> by_model;
+        LaunchJudgement judged;
+        if (model != nullptr) {
+          by_model = (*model)(seen, hole);
+          if (by_model && !(by_model->club_speed >= club_min && by_model->club_speed <= club_max))
+            by_model.reset();  // outside the arm's envelope: not a hit the module takes
+          if (by_model) {
+            const double c = by_model->club_speed;
+            judged = judge_launch(*w.belief, seen, hole, by_model->angle + skill.angle_offset(c),
+                                  skill.launch_speed(c), err, po, cache);
+            result.imagined_putts += judged.imagined_putts;
+          }
+        }
+        if (by_model && judged.sink_probability >= po.accept_probability) {
+          model_hit = by_model;
+        } else {
+          plan = plan_stroke(oracle ? *w.truth : *w.belief, seen, hole, err, po, cache);
+          result.imagined_putts += plan.imagined_putts;
+          if (by_model && judged.expected_strokes <= plan.expected_strokes) model_hit = by_model;
+        }
+        if (model_hit) {
+          const double c = model_hit->club_speed;
+          plan.angle = std::remainder(model_hit->angle + skill.angle_offset(c), 2.0 * kPi);
+          plan.speed = skill.launch_speed(c);
+          plan.sink_probability = judged.sink_probability;
+          plan.bank = false;
+        }
       }
       s.angle = plan.angle;
       s.speed = plan.speed;
       s.sink_probability = plan.sink_probability;
       s.bank = plan.bank;
+      s.model = model_hit.has_value();
 
       sim::PuttOutcome out;
       if (!uses_arm) {
@@ -205,11 +237,13 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         control::FullPuttOptions o;
         o.seed = derive_seed(options.seed, 3000 + h * 64 + static_cast<std::uint64_t>(hr.strokes));
         o.record_interval = kPathInterval;
-        o.stance = system::stance_for(*w.truth, ball, plan.angle);
+        // The model's hits face +x, as it was trained; the planner's face the launch.
+        o.stance = system::stance_for(*w.truth, ball, model_hit ? 0.0 : plan.angle);
         // The robot walks to the ball it saw: the module sees it off by the vision error.
         o.perceived_ball_offset = {seen[0] - ball[0], seen[1] - ball[1]};
-        const double club = skill.club_for(plan.speed, club_min, club_max);
-        const double hitting = -skill.angle_offset(club);
+        const double club =
+            model_hit ? model_hit->club_speed : skill.club_for(plan.speed, club_min, club_max);
+        const double hitting = model_hit ? model_hit->angle : -skill.angle_offset(club);
         const auto r = system::arm_putt(*w.truth, *w.data, hole, hitting, club, o);
         if (r.hit_refused || !r.hit) {
           // Braked, the ball untouched: the stroke counts (a whiff), the ball stays.

@@ -17,6 +17,8 @@
 /// `max_strokes` strokes, penalties included.
 #include <array>
 #include <functional>
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,15 @@ std::string to_string(Player player);
 /// "robot", "oracle", "exact-oracle" or "greedy"; throws InputError naming `what` otherwise.
 Player parse_player(const std::string& text, const std::string& what);
 
+/// A learned hitting model as the round plays it (`play --model`): the hit it predicts for `hole`
+/// with the robot standing at `ball` facing +x (the frame it was trained in): hitting angle [rad]
+/// and club speed [m/s]; nothing when the situation is not one the model knows.
+struct ModelHit {
+  double angle = 0.0, club_speed = 0.0;
+};
+using HitModel =
+    std::function<std::optional<ModelHit>(std::array<double, 2> ball, std::array<double, 2> hole)>;
+
 struct RoundOptions {
   Player player = Player::kRobot;
   std::uint64_t seed = 0;
@@ -42,6 +53,10 @@ struct RoundOptions {
   /// The oracle's launch error (std of angle [rad] and relative speed [-]): the arm's launch
   /// repeatability under `vision_noise`, measured by bench/game/launch_precision.
   LaunchError oracle_error{0.0005, 0.007};
+  /// The robot's learned models by field name: a stroke is the model's when its hit, judged in
+  /// the robot's model of the field through its launch skill, sinks with at least
+  /// `planner.accept_probability` or is expected to take no more strokes than the planner's.
+  std::map<std::string, HitModel> models;
   PlannerOptions planner;
   void validate() const;
 };
@@ -58,6 +73,7 @@ struct StrokeRecord {
   bool left_lane = false;         ///< a penalty stroke follows
   double sink_probability = 0.0;  ///< the plan's
   bool bank = false;
+  bool model = false;                       ///< played with a learned model (RoundOptions::models)
   std::vector<std::array<double, 2>> path;  ///< the ball's path (10 ms apart)
 };
 

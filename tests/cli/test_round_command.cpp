@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -63,8 +64,45 @@ holes:
   const auto r =
       run_minigolf("play --course " + course.string() + " --compare --seeds 2 --budget 3");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* row : {"| robot |", "| oracle |", "| greedy |", "vs oracle", "hole-in-one"})
+  for (const char* row :
+       {"| robot |", "| oracle |", "| exact-oracle |", "| greedy |", "vs oracle", "hole-in-one"})
     EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
+}
+
+TEST(PlayCli, TheRobotPlaysItsLearnedModelWhereItSinks) {
+  // The thesis's flat model (its shipped data set: xi_y -> angle at a fixed club speed), played
+  // from a tee moved by (0.3, 0.1): on a level lane the situation is hole - ball.
+  const auto dir = std::filesystem::temp_directory_path() / "mg_round_cli";
+  std::filesystem::create_directories(dir);
+  const auto model = dir / "flat-model.json";
+  const auto data = std::filesystem::path(MINIGOLF_SOURCE_DIR) / "data" / "datasets" / "flat.csv";
+  ASSERT_EQ(run_minigolf("train --method gpr " + data.string() + " -o " + model.string()).exit_code,
+            0);
+  const auto course = write_course("model.yaml", R"(format_version: 1
+name: model
+holes:
+  - {field: flat, tee: [0.3, 0.1], hole: [2.3, 0.2], par: 2}
+)");
+  const auto r = run_minigolf("play --course " + course.string() + " --seed 2 --budget 4 --json " +
+                              "--model flat=" + model.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& first = j["holes"][0]["putts"][0];
+  EXPECT_TRUE(first["model"].get<bool>()) << first;
+  EXPECT_TRUE(j["holes"][0]["sunk"].get<bool>());
+  EXPECT_EQ(j["learning_putts"].get<int>(), 4);
+  const std::vector<std::string> bad_specs{"flat", "=x.json",
+                                           "flat=", "no-such-field=" + model.string(),
+                                           "flat=" + (dir / "missing.json").string()};
+  for (const std::string& bad : bad_specs) {
+    const auto e = run_minigolf("play --course " + course.string() + " --model " + bad);
+    EXPECT_EQ(e.exit_code, 2) << bad << ": " << e.err;
+    EXPECT_EQ(count_lines(e.err), 1) << bad << ": " << e.err;
+  }
+  const auto e = run_minigolf("play --course " + course.string() +
+                              " --player oracle --model flat=" + model.string());
+  EXPECT_EQ(e.exit_code, 2);
+  EXPECT_NE(e.err.find("--model"), std::string::npos) << e.err;
 }
 
 TEST(PlayCli, BadCoursesAreOneLineErrorsWithExitTwo) {

@@ -49,6 +49,23 @@ TEST(Planner, ExactExecutionSinksTheDirectPuttOnFlat) {
   EXPECT_TRUE(out.sunk);
 }
 
+TEST(Planner, AJudgedLaunchScoresAsThePlanAndAMissAsAMiss) {
+  const auto sys = system_for("flat");
+  const auto& f = sys.field();
+  const LaunchError e{0.002, 0.01};
+  const StrokePlan p = plan_stroke(sys, f.tee, f.hole.position, e, quick());
+  const LaunchJudgement same =
+      judge_launch(sys, f.tee, f.hole.position, p.angle, p.speed, e, quick());
+  EXPECT_NEAR(same.sink_probability, p.sink_probability, 1e-12);
+  EXPECT_NEAR(same.expected_strokes, p.expected_strokes, 1e-12);
+  const LaunchJudgement wide =
+      judge_launch(sys, f.tee, f.hole.position, p.angle + 0.3, p.speed, e, quick());
+  EXPECT_EQ(wide.sink_probability, 0.0);
+  EXPECT_GT(wide.expected_strokes, 2.0);
+  EXPECT_THROW(judge_launch(sys, f.tee, f.hole.position, std::nan(""), 1.0, e, quick()),
+               InputError);
+}
+
 TEST(Planner, SameBitsForAnyThreadCountAndWithTheCache) {
   const auto sys = system_for("flat");
   const auto hole = sys.field().hole.position;
