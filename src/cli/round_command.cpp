@@ -17,7 +17,7 @@
 #include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
-#include "experiments/evaluate.hpp"
+#include "experiments/round_study.hpp"
 #include "game/report.hpp"
 #include "system/system.hpp"
 
@@ -38,23 +38,6 @@ struct Args {
   SystemArgs system;
 };
 
-/// --model FIELD=FILE: the robot's learned model for the holes on FIELD (a name or a file).
-std::map<std::string, game::HitModel> load_round_models(const std::vector<std::string>& specs) {
-  std::map<std::string, game::HitModel> models;
-  for (const auto& spec : specs) {
-    const auto eq = spec.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
-      throw InputError(fmt::format("--model: expected FIELD=FILE, got '{}'", spec));
-    const field::Field field = field::load_field(spec.substr(0, eq));
-    const std::string file = spec.substr(eq + 1);
-    auto model = std::make_shared<const learning::Model>(learning::load_model(file));
-    experiments::check_playable_model(*model, file);
-    if (!models.emplace(field.name, experiments::round_hit_model(model, field)).second)
-      throw InputError(fmt::format("--model: two models for field '{}'", field.name));
-  }
-  return models;
-}
-
 game::RoundOptions round_options(const Args& a) {
   game::RoundOptions o;
   o.player = game::parse_player(a.player, "--player");
@@ -63,7 +46,7 @@ game::RoundOptions round_options(const Args& a) {
   o.planner.threads = a.system.threads;
   if (!a.models.empty() && o.player != game::Player::kRobot)
     throw InputError("--model: only the robot player plays a learned model");
-  o.models = load_round_models(a.models);
+  o.models = experiments::load_round_models(a.models, "--model");
   o.validate();
   return o;
 }

@@ -1,14 +1,34 @@
 #include "experiments/round_study.hpp"
 
+#include <memory>
+
 #include <fmt/format.h>
 
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "experiments/evaluate.hpp"
 #include "plant/plant.hpp"
 #include "system/system.hpp"
 #include "viz/round_figure.hpp"
 
 namespace mg::experiments {
+
+std::map<std::string, game::HitModel> load_round_models(const std::vector<std::string>& specs,
+                                                        const std::string& what) {
+  std::map<std::string, game::HitModel> models;
+  for (const auto& spec : specs) {
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
+      throw InputError(fmt::format("{}: expected FIELD=FILE, got '{}'", what, spec));
+    const field::Field field = field::load_field(spec.substr(0, eq));
+    const std::string file = spec.substr(eq + 1);
+    auto model = std::make_shared<const learning::Model>(learning::load_model(file));
+    check_playable_model(*model, file);
+    if (!models.emplace(field.name, round_hit_model(model, field)).second)
+      throw InputError(fmt::format("{}: two models for field '{}'", what, field.name));
+  }
+  return models;
+}
 
 RoundStudy round_study(const RoundStudyOptions& o, const std::filesystem::path& out,
                        const std::function<void(const std::string&)>& log) {

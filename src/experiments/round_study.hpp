@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,12 @@ struct RoundStudy {
   std::vector<game::CourseRounds> rounds;  ///< per course
   std::string markdown;                    ///< the tables and the figure links
 };
+
+/// The robot's learned models of a round from FIELD=FILE specs (FIELD: a shipped name or a field
+/// file; FILE: a model of `minigolf train`), keyed by field name (round_hit_model). Throws
+/// InputError naming `what` and the spec.
+std::map<std::string, game::HitModel> load_round_models(const std::vector<std::string>& specs,
+                                                        const std::string& what);
 
 /// Plays and reports into `out` (rounds.csv, rounds.md, figures/round-<course>-hole<K>.png).
 /// `log` gets progress lines.

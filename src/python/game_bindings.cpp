@@ -3,8 +3,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <map>
 #include <string>
+#include <vector>
 
+#include "core/error.hpp"
+#include "experiments/round_study.hpp"
 #include "game/report.hpp"
 #include "plant/plant.hpp"
 #include "python/bindings.hpp"
@@ -17,7 +21,7 @@ void bind_game(py::module_& m) {
       "play",
       [](const std::string& course, const std::string& player, std::uint64_t seed, int budget,
          const std::string& plant, const std::string& config, const std::string& hitting_model,
-         int threads) {
+         int threads, const std::map<std::string, std::string>& models) {
         std::string text;
         {
           py::gil_scoped_release release;
@@ -27,6 +31,11 @@ void bind_game(py::module_& m) {
           o.seed = seed;
           o.calibration_putts = budget;
           o.planner.threads = threads;
+          std::vector<std::string> specs;
+          for (const auto& [field, file] : models) specs.push_back(field + "=" + file);
+          if (!specs.empty() && o.player != game::Player::kRobot)
+            throw InputError("models: only the robot player plays a learned model");
+          o.models = experiments::load_round_models(specs, "models");
           o.validate();
           const plant::Plant p = plant.empty() ? plant::Plant{} : plant::load_plant(plant);
           game::ImaginedCache cache;
@@ -41,10 +50,13 @@ void bind_game(py::module_& m) {
       py::arg("course"), py::arg("player") = "robot", py::arg("seed") = 0,
       py::arg("budget") = game::RoundOptions{}.calibration_putts, py::arg("plant") = "",
       py::arg("config") = "", py::arg("hitting_model") = "", py::arg("threads") = 0,
+      py::arg("models") = std::map<std::string, std::string>{},
       "Plays a round on `course` (shipped name or path) by `player` (robot: the arm with its own "
       "model of each field and `budget` learning putts per field; oracle: planning in the true "
-      "world, ball-only putts; greedy: aim at the hole). plant: the world as it really is. "
-      "Returns the dict of `minigolf play --json`. Releases the GIL.");
+      "world, ball-only putts launched with the arm's precision; exact-oracle: the same, exact; "
+      "greedy: aim at the hole). plant: the world as it really is. models: {field: model file} "
+      "the robot plays where they sink surely (as `play --model`). Returns the dict of "
+      "`minigolf play --json`. Releases the GIL.");
 }
 
 }  // namespace mg::python

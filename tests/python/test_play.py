@@ -56,3 +56,20 @@ def test_bad_arguments_are_value_errors(course):
         minigolf.play(course, player="tiger")
     with pytest.raises(ValueError, match="budget"):
         minigolf.play(course, budget=0)
+
+
+def test_a_learned_model_plays_where_it_sinks(tmp_path):
+    # The shipped flat data set's line (xi = (2, -0.2..0.4)), seen from a moved tee.
+    course = tmp_path / "model.yaml"
+    course.write_text(COURSE.replace("hole: [1.4, -0.1]", "hole: [2.2, 0.2]"))
+    course = str(course)
+    data = os.path.join(os.path.dirname(__file__), "..", "..", "data", "datasets", "flat.csv")
+    model = tmp_path / "flat.json"
+    subprocess.run([os.environ["MINIGOLF_BINARY"], "train", "--method", "gpr", data, "-o",
+                    str(model)], check=True, capture_output=True)
+    r = minigolf.play(course, seed=2, budget=4, models={"flat": str(model)})
+    assert r["holes"][0]["putts"][0]["model"] is True
+    with pytest.raises(ValueError, match="models"):
+        minigolf.play(course, player="oracle", models={"flat": str(model)})
+    with pytest.raises(Exception, match="no-such-field"):
+        minigolf.play(course, models={"no-such-field": str(model)})
