@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -33,6 +34,67 @@ struct Probe {
   double launch_angle = 0.0, launch_speed = 0.0, approach_speed = 0.0;
 };
 
+/// True if the ball's centre, rolling straight from a to b, comes within a ball radius of an
+/// obstacle.
+bool line_blocked(const field::Field& f, std::array<double, 2> a, std::array<double, 2> b) {
+  if (f.obstacles.empty()) return false;
+  const int n =
+      std::max(2, static_cast<int>(std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / 0.01)));
+  for (int k = 0; k <= n; ++k) {
+    const double t = static_cast<double>(k) / n;
+    const std::array<double, 2> p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
+    for (const auto& o : f.obstacles)
+      if (o.distance(p) < f.ball.radius) return true;
+  }
+  return false;
+}
+
+/// A bank shot off one border: the launch that aims at the hole's mirror image across the line
+/// the ball's centre bounces on (the border's face a ball radius into the lane).
+struct BankShot {
+  double angle = 0.0;         ///< [rad] launch direction
+  double launch_speed = 0.0;  ///< [m/s] prior: rolls both legs, loses the normal speed's share
+  double path_length = 0.0;   ///< [m]
+};
+
+/// The bank shots off the four borders whose two legs are clear of obstacles, shortest first.
+std::vector<BankShot> bank_shots(const field::Field& f, std::array<double, 2> hole,
+                                 double arrival) {
+  const auto& b = f.bounds;
+  const double r = f.ball.radius, e = f.borders.restitution;
+  const double a_roll = 5.0 / 7.0 * f.rolling_resistance * kGravity;
+  const std::array<double, 2> tee = f.tee;
+  std::vector<BankShot> out;
+  for (int side = 0; side < 4; ++side) {
+    const bool vertical = side < 2;  // x = const
+    const double line = side == 0   ? b[0] + r
+                        : side == 1 ? b[1] - r
+                        : side == 2 ? b[2] + r
+                                    : b[3] - r;
+    std::array<double, 2> image = hole;
+    image[vertical ? 0 : 1] = 2.0 * line - hole[vertical ? 0 : 1];
+    const int k = vertical ? 0 : 1;
+    const double denom = image[k] - tee[k];
+    if (std::abs(denom) < 1e-9) continue;
+    const double t = (line - tee[k]) / denom;
+    if (!(t > 0.0 && t < 1.0)) continue;
+    const std::array<double, 2> bounce{tee[0] + t * (image[0] - tee[0]),
+                                       tee[1] + t * (image[1] - tee[1])};
+    if (line_blocked(f, tee, bounce) || line_blocked(f, bounce, hole)) continue;
+    const double l1 = std::hypot(bounce[0] - tee[0], bounce[1] - tee[1]);
+    const double l2 = std::hypot(hole[0] - bounce[0], hole[1] - bounce[1]);
+    const double normal = std::abs(denom) / (l1 + l2);  // sine of the incidence on the line
+    const double keep = (1.0 - normal * normal) + e * e * normal * normal;
+    const double after = arrival * arrival + 2.0 * a_roll * l2;
+    const double v2 = after / std::max(keep, 0.05) + 2.0 * a_roll * l1;
+    out.push_back(
+        {std::atan2(image[1] - tee[1], image[0] - tee[0]), 7.0 / 5.0 * std::sqrt(v2), l1 + l2});
+  }
+  std::sort(out.begin(), out.end(),
+            [](const BankShot& x, const BankShot& y) { return x.path_length < y.path_length; });
+  return out;
+}
+
 /// The search state of one situation.
 class Search {
  public:
@@ -49,6 +111,13 @@ class Search {
     const LaunchGuess prior = prior_launch(f, hole, vt_);
     aim_ = prior.angle;
     prior_launch_speed_ = prior.speed;
+    lateral_gain_ = -distance_;
+    if (line_blocked(f, f.tee, hole)) banks_ = bank_shots(f, hole, vt_);
+    if (!banks_.empty()) {  // the shortest bank until a search tries the others
+      aim_ = banks_.front().angle;
+      distance_ = lateral_gain_ = banks_.front().path_length;
+      prior_launch_speed_ = banks_.front().launch_speed;
+    }
   }
 
   Probe residual(const sim::PuttOutcome& o) const {
@@ -125,7 +194,8 @@ class Search {
       // Broyden's rank-one update (one_d: the secant).
       const Eigen::Vector2d dr = pn.r - p.r;
       if (one_d) {
-        if (std::abs(dx[0]) > 1e-9 && std::abs(dr[0] / dx[0]) > 1e-3 && dr[0] / dx[0] < 0.0)
+        if (std::abs(dx[0]) > 1e-9 && std::abs(dr[0] / dx[0]) > 1e-3 &&
+            (dr[0] / dx[0]) * jac(0, 0) > 0.0)  // the slope keeps its sign (a bank flips it)
           jac(0, 0) = dr[0] / dx[0];
       } else {
         jac += (dr - jac * dx) * dx.transpose() / dx.squaredNorm();
@@ -144,15 +214,31 @@ class Search {
     return best;
   }
 
-  /// Stage 1: a sinking launch (angle, speed) on the ball-only path.
+  /// Stage 1: a sinking launch (angle, speed) on the ball-only path. The direct line, unless an
+  /// obstacle blocks it; then the bank shots off a border, shortest path first.
   std::optional<Eigen::Vector2d> propose() {
-    const Eigen::Vector2d x0(aim_, prior_launch_speed_);
-    Eigen::Matrix2d j;
-    j << -distance_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * prior_launch_speed_;
     const auto probe = [&](const Eigen::Vector2d& x) { return ball(x[0], x[1]); };
-    const Eigen::Vector2d lo(aim_ - 0.6, 0.2), hi(aim_ + 0.6, 6.0);
-    if (auto x = solve(x0, j, 14, probe, lo, hi, false)) return x;
-    return grid_proposal();
+    if (banks_.empty()) {
+      const Eigen::Vector2d x0(aim_, prior_launch_speed_);
+      Eigen::Matrix2d j;
+      j << lateral_gain_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * prior_launch_speed_;
+      const Eigen::Vector2d lo(aim_ - 0.6, 0.2), hi(aim_ + 0.6, 6.0);
+      if (auto x = solve(x0, j, 14, probe, lo, hi, false)) return x;
+      return grid_proposal();
+    }
+    const auto& c = sys_.config();
+    for (const BankShot& b : banks_) {
+      if (ex_.ball_putts + 14 > opt_.max_ball_putts) break;
+      aim_ = b.angle;
+      distance_ = b.path_length;
+      lateral_gain_ = b.path_length;  // one bounce mirrors the path: the miss turns the other way
+      Eigen::Matrix2d j;
+      j << lateral_gain_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * b.launch_speed;
+      const Eigen::Vector2d lo(c.angle_min + kLaunchBias, 0.2), hi(c.angle_max + kLaunchBias, 6.0);
+      if (auto x = solve(Eigen::Vector2d(b.angle, b.launch_speed), j, 14, probe, lo, hi, false))
+        return x;
+    }
+    return std::nullopt;
   }
 
   /// Fallback of stage 1: a coarse grid around the aim; the strategy's pick among sinking cells
@@ -203,7 +289,7 @@ class Search {
     }
     if (grid_used_) return std::nullopt;
     Eigen::Matrix2d j;
-    j << -distance_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * launch[1] * kLaunchRatio;
+    j << lateral_gain_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * launch[1] * kLaunchRatio;
     const auto& c = sys_.config();
     const auto probe = [&](const Eigen::Vector2d& x) {
       const auto [a, s] = clamp_club(x[0], x[1]);
@@ -219,7 +305,7 @@ class Search {
   std::optional<Eigen::Vector2d> hinted_solve() {
     const auto& c = sys_.config();
     Eigen::Matrix2d j;
-    j << -distance_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * opt_.hint[1] * kLaunchRatio * kLaunchRatio;
+    j << lateral_gain_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * opt_.hint[1] * kLaunchRatio * kLaunchRatio;
     const auto probe = [&](const Eigen::Vector2d& x) {
       const auto [a, s] = clamp_club(x[0], x[1]);
       return full(a, s);
@@ -234,7 +320,7 @@ class Search {
   std::optional<Eigen::Vector2d> angle_solve() {
     const auto& c = sys_.config();
     Eigen::Matrix2d j;
-    j << -distance_, 0.0, 0.0, 1.0;
+    j << lateral_gain_, 0.0, 0.0, 1.0;
     const double v = opt_.fixed_speed;
     const auto probe = [&](const Eigen::Vector2d& x) {
       return full(std::clamp(x[0], c.angle_min, c.angle_max), v);
@@ -310,6 +396,8 @@ class Search {
   TeacherOptions opt_;
   double dx_ = 0, dy_ = 0, distance_ = 1, aim_ = 0, a_roll_ = 0, vt_ = 0.5, radius_ = 0.054;
   double prior_launch_speed_ = 1.0;
+  double lateral_gain_ = -1.0;   ///< d(lateral miss)/d(launch angle) [m/rad] at the start
+  std::vector<BankShot> banks_;  ///< when an obstacle blocks the direct line
   bool grid_used_ = false;
   Example ex_;
 };

@@ -15,7 +15,11 @@
 ///              scaled by the hole's capture speed): the straightest line.
 /// 1. Proposal on the ball-only path (launch angle, launch speed): Broyden's method from a
 ///    physics-free prior (aim at the hole; the launch speed that rolls the distance plus the
-///    climb, Penner's law); a coarse grid around the aim if that does not converge.
+///    climb, Penner's law); a coarse grid around the aim if that does not converge. When an
+///    obstacle blocks the straight line, bank shots instead: aim at the hole's mirror image
+///    across a border (its face a ball radius in), legs clear of obstacles, the shortest path
+///    first; the first that converges is the window the teacher takes (one bounce mirrors the
+///    path, so the miss's slope in the angle starts with the other sign).
 /// 2. The proposal is mapped to the club through the launch relation measured by the putts
 ///    themselves (launch angle - theta, launch speed / club speed) and solved again on the full
 ///    system with the same residual. Every recorded example is a full-system putt that sank.

@@ -1,6 +1,8 @@
 // The automated teacher: finds sinking putts on the full system with a verified neighbourhood.
 #include "teacher/teacher.hpp"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
@@ -29,6 +31,23 @@ TEST(Teacher, FindsASinkingPuttOnTheFlatFieldInAHandfulOfPutts) {
     EXPECT_TRUE(system::arm_putt(flat(), data, e.hole, e.angle + da, e.speed).outcome.sunk) << da;
   // Aimed about along xi (plus the arm's launch bias).
   EXPECT_NEAR(e.angle, std::atan2(0.1, 2.0), 0.02);
+}
+
+TEST(Teacher, ABlockedLineIsPlayedOffABorder) {
+  // bank-shot: a block between the tee and the hole; the bank off the +y border is the one the
+  // fixed arm's hitting angles reach (up to 0.6 rad).
+  const system::System sys(system::load_config("", "bank-shot"));
+  system::SystemData data(sys);
+  const Example e = teach(sys, data, {1.9, 0.2}, TeacherOptions{});
+  ASSERT_TRUE(e.found);
+  EXPECT_GT(e.angle, 0.4);  // far off the direct line (0.1 rad): towards the border
+  control::FullPuttOptions o;
+  o.record_interval = 0.01;
+  const auto out = system::arm_putt(sys, data, e.hole, e.angle, e.speed, o).outcome;
+  EXPECT_TRUE(out.sunk);
+  double max_y = -1.0;
+  for (const auto& p : out.trajectory) max_y = std::max(max_y, p.y);
+  EXPECT_GT(max_y, 0.5);  // it went by the border (the lane's edge: 0.6)
 }
 
 TEST(Teacher, StrategiesDifferAsNamedAndAreDeterministic) {
