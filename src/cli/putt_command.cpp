@@ -25,9 +25,6 @@
 namespace mg::cli {
 namespace {
 
-// Trajectory samples are 10 ms apart (the recorded outcome is the same bits as without).
-constexpr double kTrajectoryInterval = 0.01;
-
 void print_text(const system::System& sys, const system::PuttSpec& spec,
                 const system::PuttReport& r) {
   const sim::PuttOutcome& out = r.outcome;
@@ -59,7 +56,7 @@ void add_putt_command(CLI::App& app) {
     std::optional<double> aim;
     double angle = 0.0;
     double speed = 0.0;
-    double max_duration = 30.0;
+    double max_duration = system::PuttSpec{}.max_duration;
     bool ball_only = false;
     bool json = false;
     std::string trajectory;
@@ -100,7 +97,7 @@ void add_putt_command(CLI::App& app) {
     spec.ball_only = o->ball_only;
     spec.aim = o->aim;
     spec.max_duration = o->max_duration;
-    spec.record_interval = o->trajectory.empty() ? 0.0 : kTrajectoryInterval;
+    spec.record_interval = o->trajectory.empty() ? 0.0 : system::kTrajectoryInterval;
     if (o->ball_only && o->aim)
       throw InputError("--aim: only with the arm (a ball-only putt's --angle is its aim)");
     if (!o->hole.empty()) spec.hole = parse_vector<2>("--hole", o->hole);

@@ -39,7 +39,11 @@ teacher::TeacherOptions teacher_options(const system::System& sys, const std::st
   return t;
 }
 
+// The library's defaults, in one place.
 const teacher::TeacherOptions kTeacherDefaults{};
+const system::PuttSpec kPuttDefaults{};
+const experiments::EvaluateOptions kEvaluateDefaults{};
+const experiments::CollectOptions kCollectDefaults{};
 
 }  // namespace
 
@@ -172,8 +176,8 @@ void bind_system(py::module_& m) {
             return putt(s, data, spec);
           },
           py::arg("angle"), py::arg("speed"), py::arg("hole") = py::none(),
-          py::arg("ball_only") = false, py::arg("max_duration") = 30.0,
-          py::arg("record_interval") = 0.01, py::arg("data") = py::none(),
+          py::arg("ball_only") = false, py::arg("max_duration") = kPuttDefaults.max_duration,
+          py::arg("record_interval") = system::kTrajectoryInterval, py::arg("data") = py::none(),
           py::arg("ball") = py::none(), py::arg("aim") = py::none(),
           "One putt. Arm (default): hitting angle `angle` [rad] and club speed `speed` [m/s] "
           "within the safe "
@@ -267,8 +271,9 @@ void bind_system(py::module_& m) {
             return experiments::collect(s, holes, o, out).examples;
           },
           py::arg("out"), py::arg("situations") = "", py::arg("strategy") = "",
-          py::arg("max_full_putts") = kTeacherDefaults.max_full_putts, py::arg("seed") = 1,
-          py::arg("threads") = 0, py::arg("resume") = false,
+          py::arg("max_full_putts") = kTeacherDefaults.max_full_putts,
+          py::arg("seed") = kCollectDefaults.seed, py::arg("threads") = 0,
+          py::arg("resume") = false,
           "The teacher collects a data set at the region's collection points (or a --situations "
           "spec) into "
           "the CSV `out`, as `minigolf collect` does (resumable); returns the examples in index "
@@ -289,7 +294,8 @@ void bind_system(py::module_& m) {
             py::gil_scoped_release release;
             return experiments::evaluate_model(s, model, region, o);
           },
-          py::arg("model"), py::arg("situations") = 30, py::arg("seed") = 1, py::arg("threads") = 0,
+          py::arg("model"), py::arg("situations") = kEvaluateDefaults.situations,
+          py::arg("seed") = kEvaluateDefaults.seed, py::arg("threads") = 0,
           py::arg("oracle") = true, py::arg("region") = "",
           "The robot plays `situations` random test situations of the field's region (or a "
           "--situations spec) "

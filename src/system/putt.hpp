@@ -12,6 +12,10 @@
 
 namespace mg::system {
 
+/// [s] Spacing of a recorded ball trajectory: `minigolf putt --trajectory` and Python's
+/// System.putt by default (recording changes no bit of the outcome).
+inline constexpr double kTrajectoryInterval = 0.01;
+
 /// What a user asks for.
 struct PuttSpec {
   /// [rad] With the arm: the hitting angle in the base's frame; ball only: the launch angle,
