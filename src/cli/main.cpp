@@ -10,6 +10,7 @@
 
 #include "cli/commands.hpp"
 #include "core/error.hpp"
+#include "sim/mujoco_errors.hpp"
 #include "system/distributed.hpp"
 
 namespace {
@@ -57,6 +58,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mg::sim::exit_on_mujoco_error();  // one line and exit 1, not MuJoCo's wait for Enter
   mg::system::ProcessGroup processes(argc, argv);  // an MPI run under mpirun / srun
   return processes.finish(run(argc, argv));
 }

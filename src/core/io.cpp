@@ -318,7 +318,11 @@ std::filesystem::path data_dir() {
       for (const auto& c :
            {exe.parent_path() / ".." / "share" / "minigolf" / "data", exe.parent_path() / "data"})
         if (usable(c)) return c.lexically_normal();
-    return std::filesystem::path(MINIGOLF_DATA_DIR);
+    // Then the source tree recorded at build time, then the installed package's data (a program
+    // built against `find_package(minigolf)`, the source tree gone).
+    const std::filesystem::path source(MINIGOLF_DATA_DIR), installed(MINIGOLF_INSTALLED_DATA_DIR);
+    if (!usable(source) && usable(installed)) return installed;
+    return source;
   }();
   return found;
 }

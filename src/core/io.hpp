@@ -52,7 +52,9 @@ int termination_signal() noexcept;
 
 /// Directory holding the shipped data (fields, demonstrations, models): `$MINIGOLF_DATA_DIR`
 /// if set, else `<exe>/../share/minigolf/data` or `<exe>/data` if it holds `fields/` (an
-/// installed or copied build), else the source tree's `data/` recorded at build time.
+/// installed or copied build), else the source tree's `data/` recorded at build time, or, if that
+/// is gone, `<install prefix>/share/minigolf/data` of the configured prefix (a program using the
+/// installed package; after `cmake --install --prefix` elsewhere, set `$MINIGOLF_DATA_DIR`).
 std::filesystem::path data_dir();
 
 /// `s` as one single-quoted POSIX shell word (for commands run through std::system).

@@ -1,7 +1,7 @@
 // The `minigolf` Python module (pybind11): the library's fields, worlds, putts, learners, DS
-// rollouts, teacher and experiments, bound part by part (field_, world_, system_, learner_ and
-// render_bindings.cpp). Units: metres, seconds, radians, m/s. Long calls release the GIL;
-// mg::InputError -> ValueError, mg::IoError -> OSError, mg::NumericalError ->
+// rollouts, teacher and experiments, bound part by part (field_, world_, putt_, system_,
+// learner_, render_ and game_bindings.cpp). Units: metres, seconds, radians, m/s. Long calls
+// release the GIL; mg::InputError -> ValueError, mg::IoError -> OSError, mg::NumericalError ->
 // minigolf.NumericalError (a RuntimeError), other mg::Error -> RuntimeError, with the messages
 // the CLI prints after "minigolf: error: ".
 #include <pybind11/pybind11.h>
@@ -38,6 +38,7 @@ PYBIND11_MODULE(_minigolf, m) {
 
   python::bind_fields(m);
   python::bind_worlds(m);
+  python::bind_putts(m);
   python::bind_system(m);
   python::bind_learners(m);
   python::bind_render(m);

@@ -15,6 +15,7 @@
 
 #include "core/error.hpp"
 #include "sim/world.hpp"
+#include "system/putt.hpp"
 #include "system/system.hpp"
 
 namespace mg::python {
@@ -99,10 +100,21 @@ class Lease {
   PySystemData* d_;
 };
 
+/// A putt's request, report and `minigolf putt --json` object (system::putt).
+struct PuttResult {
+  system::PuttSpec spec;
+  system::PuttReport report;
+  nlohmann::json json;
+};
+/// system::putt with `data` (a fresh SystemData when null; one thread at a time), the GIL released
+/// (putt_bindings.cpp).
+PuttResult putt(const system::System& system, PySystemData* data, const system::PuttSpec& spec);
+
 void bind_fields(py::module_& m);  ///< Situations, Field (field_bindings.cpp)
 void bind_worlds(py::module_& m);  ///< World, Data (world_bindings.cpp)
+void bind_putts(py::module_& m);   ///< PuttResult (putt_bindings.cpp)
 void bind_system(
-    py::module_& m);  ///< SystemData, PuttResult, Example, Evaluation, System (system_bindings.cpp)
+    py::module_& m);  ///< SystemData, Example, Evaluation, System (system_bindings.cpp)
 void bind_learners(
     py::module_& m);  ///< Model, train, load_dataset, HittingModel (learner_bindings.cpp)
 void bind_render(py::module_& m);  ///< Renderer (render_bindings.cpp)

@@ -18,6 +18,11 @@
 namespace mg::python {
 namespace {
 
+const learning::TrainOptions kTrainDefaults{};  // the library's defaults, in one place
+
+}  // namespace
+namespace {
+
 std::vector<std::string> default_names(int n, const std::vector<std::string>& preferred,
                                        const char* prefix) {
   if (n == static_cast<int>(preferred.size())) return preferred;
@@ -109,8 +114,10 @@ void bind_learners(py::module_& m) {
       py::arg("x"), py::arg("y"), py::arg("method") = "gpr",
       py::arg("input_names") = std::vector<std::string>{},
       py::arg("output_names") = std::vector<std::string>{}, py::arg("num_gaussians") = 0,
-      py::arg("selection") = "bic", py::arg("max_gaussians") = 5, py::arg("restarts") = 10,
-      py::arg("seed") = 1, py::arg("reg_covar") = 1e-2,
+      py::arg("selection") = std::string(learning::selection_name(kTrainDefaults.selection)),
+      py::arg("max_gaussians") = kTrainDefaults.max_gaussians,
+      py::arg("restarts") = kTrainDefaults.restarts, py::arg("seed") = kTrainDefaults.seed,
+      py::arg("reg_covar") = kTrainDefaults.em.reg_covar,
       py::arg("fixed") = std::vector<std::pair<std::string, double>>{},
       "Trains a learner on inputs x (N, I) and outputs y (N, O). method: 'gpr' | 'gmr' | "
       "'joint-gmr'. Names "

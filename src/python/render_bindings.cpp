@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "python/bindings.hpp"
+#include "sim/mujoco_errors.hpp"
 #include "viz/renderer.hpp"
 
 namespace py = pybind11;
@@ -32,6 +33,9 @@ class PyRenderer {
       : world_(world), camera_name_(std::move(camera)) {
     viz::camera_preset(camera_name_, world_,
                        probe());  // an unknown name fails before a window opens
+    // MuJoCo's fatal errors while drawing end the process with one line (sim/mujoco_errors.hpp),
+    // not with MuJoCo's wait for Enter: the Python module's choice, made where it draws.
+    sim::exit_on_mujoco_error();
     window_ = std::make_unique<viz::GlWindow>(width, height, visible, "minigolf");
     renderer_ = std::make_unique<viz::Renderer>(world_, width, height);
     visible_ = visible;

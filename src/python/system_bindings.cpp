@@ -1,5 +1,5 @@
-// minigolf.System: putts (arm and ball only), the teacher, sweeps, data collection and evaluation,
-// as the CLI's commands run them. Long calls release the GIL.
+// minigolf.System: putts (arm and ball only: putt_bindings.cpp), the teacher, sweeps, data
+// collection and evaluation, as the CLI's commands run them. Long calls release the GIL.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -13,7 +13,6 @@
 
 #include <fmt/format.h>
 
-#include "control/full_system.hpp"
 #include "experiments/collect.hpp"
 #include "experiments/evaluate.hpp"
 #include "experiments/sweep.hpp"
@@ -26,117 +25,6 @@
 
 namespace mg::python {
 namespace {
-
-// ---- putts
-
-struct PuttResult {
-  std::string field;
-  bool ball_only = true;
-  std::array<double, 2> hole{0, 0};
-  std::array<double, 2> ball{0, 0};  ///< where it lay
-  double aim = 0;                    ///< the base's facing (arm putts) [rad]
-  double angle = 0, speed = 0;
-  sim::PuttOutcome outcome;
-  control::AngleSpeed club, launch;
-  control::CoreTiming timing;
-  std::string plant_path, plant_hash;  ///< empty: no plant file
-};
-
-py::dict putt_dict(const PuttResult& r) {
-  const sim::PuttOutcome& o = r.outcome;
-  py::dict d;
-  d["field"] = r.field;
-  d["hole"] = py::make_tuple(r.hole[0], r.hole[1]);
-  d["ball"] = py::make_tuple(r.ball[0], r.ball[1]);
-  if (!r.ball_only) d["aim"] = r.aim;
-  d["angle"] = r.angle;
-  d["speed"] = r.speed;
-  d["sunk"] = o.sunk;
-  d["end"] = sim::to_string(o.end);
-  d["rest_position"] = py::make_tuple(o.rest_position[0], o.rest_position[1]);
-  d["closest_approach"] = o.closest_approach;
-  d["duration"] = o.duration;
-  d["steps"] = o.steps;
-  if (r.plant_path.empty()) {
-    d["plant"] = py::none();
-  } else {
-    py::dict plant;
-    plant["path"] = r.plant_path, plant["hash"] = r.plant_hash;
-    d["plant"] = plant;
-  }
-  if (!r.ball_only) {
-    py::dict club, launch, timing;
-    club["angle"] = r.club.angle, club["speed"] = r.club.speed;
-    launch["angle"] = r.launch.angle, launch["speed"] = r.launch.speed;
-    timing["core_update_p99_us"] = r.timing.core_update_p99_us;
-    timing["core_update_max_us"] = r.timing.core_update_max_us;
-    timing["overruns"] = r.timing.overruns;
-    d["club"] = club, d["launch"] = launch, d["timing"] = timing;
-  }
-  return d;
-}
-
-PuttResult do_putt(const system::System& sys, PySystemData* pdata, double angle, double speed,
-                   std::optional<std::array<double, 2>> hole_opt, bool ball_only,
-                   double max_duration, double record_interval,
-                   std::optional<std::array<double, 2>> ball, std::optional<double> aim) {
-  PuttResult r;
-  r.field = sys.field().name;
-  r.ball_only = ball_only;
-  r.angle = angle;
-  r.speed = speed;
-  r.hole = hole_opt ? *hole_opt : sys.field().hole.position;
-  r.plant_path = sys.plant().source;
-  r.plant_hash = sys.plant().hash;
-  r.ball = ball ? *ball : sys.field().tee;
-  if (ball_only && aim)
-    throw InputError("aim: only with the arm (a ball-only putt's angle is its aim)");
-  if (ball) system::check_ball_position(sys.field(), *ball, "ball");
-  Lease lease(pdata);
-  std::optional<system::SystemData> local;
-  py::gil_scoped_release release;
-  system::SystemData& data = pdata ? pdata->data : local.emplace(sys);
-  if (ball_only) {  // as `minigolf putt --ball-only`
-    sim::PuttRequest request;
-    request.angle = angle;
-    request.speed = speed;
-    request.max_duration = max_duration;
-    request.record_interval = record_interval;
-    request.start = ball;
-    request.validate();
-    field::check_hole_position(sys.field(), r.hole);
-    const auto real = system::real_hole(sys, r.hole);  // where the plant's hole really is
-    field::check_hole_position(sys.ball_world().field(), real);
-    r.outcome = sim::simulate_putt(sys.ball_world(), data.ball.get(), real, request);
-    return r;
-  }
-  // as `minigolf putt` (the arm)
-  sys.check_request(angle, speed, "putt");
-  control::FullPuttOptions options;
-  options.max_duration = max_duration;
-  options.record_interval = record_interval;
-  if (ball || aim) options.stance = system::putt_stance(sys, r.ball, r.hole, aim);
-  r.aim = options.stance.yaw;
-  const control::FullPuttResult f = system::arm_putt(sys, data, r.hole, angle, speed, options);
-  if (f.hit_refused) throw InputError("putt: the module refused the hit request");
-  if (!f.hit) throw NumericalError("putt: the club did not reach the ball");
-  r.outcome = f.outcome;
-  r.club = f.club;
-  r.launch = f.launch;
-  r.timing = f.timing;
-  return r;
-}
-
-py::array_t<double> trajectory(const sim::PuttOutcome& o) {
-  py::array_t<double> a({static_cast<py::ssize_t>(o.trajectory.size()), py::ssize_t{7}});
-  auto r = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < o.trajectory.size(); ++i) {
-    const auto& s = o.trajectory[i];
-    const double row[7] = {s.t, s.x, s.y, s.z, s.vx, s.vy, s.vz};
-    for (int j = 0; j < 7; ++j) r(i, j) = row[j];
-  }
-  return a;
-}
 
 /// The teacher's options for the field's region, with the Python arguments' budgets and margins.
 teacher::TeacherOptions teacher_options(const system::System& sys, const std::string& strategy,
@@ -151,7 +39,11 @@ teacher::TeacherOptions teacher_options(const system::System& sys, const std::st
   return t;
 }
 
+// The library's defaults, in one place.
 const teacher::TeacherOptions kTeacherDefaults{};
+const system::PuttSpec kPuttDefaults{};
+const experiments::EvaluateOptions kEvaluateDefaults{};
+const experiments::CollectOptions kCollectDefaults{};
 
 }  // namespace
 
@@ -179,57 +71,6 @@ void bind_system(py::module_& m) {
                                  },
                                  py::keep_alive<0, 1>()),
                              "The ball-only world's mjData (live views; ball-only putts)");
-
-  py::class_<PuttResult>(m, "PuttResult", "The outcome of one putt.")
-      .def_readonly("field", &PuttResult::field)
-      .def_readonly("ball_only", &PuttResult::ball_only)
-      .def_readonly("hole", &PuttResult::hole, "Hole centre (x, y) [m]")
-      .def_readonly("ball", &PuttResult::ball, "Where the ball lay (x, y) [m]")
-      .def_readonly("aim", &PuttResult::aim,
-                    "The base's facing [rad, world] (arm putts; 0 ball-only)")
-      .def_readonly("angle", &PuttResult::angle,
-                    "Requested angle [rad] (club hitting angle, or ball launch angle)")
-      .def_readonly("speed", &PuttResult::speed,
-                    "Requested speed [m/s] (club speed, or ball launch speed)")
-      .def_property_readonly("sunk", [](const PuttResult& r) { return r.outcome.sunk; })
-      .def_property_readonly(
-          "end", [](const PuttResult& r) { return sim::to_string(r.outcome.end); },
-          "How the run ended: 'sunk', 'at rest', 'time out' or 'left the lane'")
-      .def_property_readonly(
-          "rest_position", [](const PuttResult& r) { return r.outcome.rest_position; },
-          "Ball (x, y) when the run ended [m]")
-      .def_property_readonly(
-          "closest_approach", [](const PuttResult& r) { return r.outcome.closest_approach; },
-          "Minimum horizontal distance ball centre - hole centre [m]")
-      .def_property_readonly(
-          "approach_speed", [](const PuttResult& r) { return r.outcome.approach_speed; },
-          "Ball speed where it met the hole (or at its closest approach) [m/s]")
-      .def_property_readonly(
-          "duration", [](const PuttResult& r) { return r.outcome.duration; },
-          "Simulated time until the outcome was decided [s]")
-      .def_property_readonly(
-          "steps", [](const PuttResult& r) { return r.outcome.steps; }, "Physics steps")
-      .def_property_readonly(
-          "trajectory", [](const PuttResult& r) { return trajectory(r.outcome); },
-          "Ball samples (N, 7): t [s], x, y, z [m], vx, vy, vz [m/s] (ball-only putts; "
-          "empty for the arm)")
-      .def_property_readonly(
-          "club",
-          [](const PuttResult& r) {
-            return std::array{r.club.angle, r.club.speed};
-          },
-          "Arm: club face (angle [rad], speed [m/s]) just before contact")
-      .def_property_readonly(
-          "launch",
-          [](const PuttResult& r) {
-            return std::array{r.launch.angle, r.launch.speed};
-          },
-          "Arm: ball launch (angle [rad], speed [m/s])")
-      .def("to_dict", &putt_dict, "The keys and values of `minigolf putt --json`")
-      .def("__repr__", [](const PuttResult& r) {
-        return fmt::format("<minigolf.PuttResult {} on {}: closest approach {:.4f} m>",
-                           r.outcome.sunk ? "sunk" : "missed", r.field, r.outcome.closest_approach);
-      });
 
   py::class_<teacher::Example>(m, "Example",
                                "A teacher's example: a sinking putt with a verified neighbourhood.")
@@ -323,12 +164,20 @@ void bind_system(py::module_& m) {
              std::optional<std::array<double, 2>> hole, bool ball_only, double max_duration,
              double record_interval, PySystemData* data, std::optional<std::array<double, 2>> ball,
              std::optional<double> aim) {
-            return do_putt(s, data, angle, speed, hole, ball_only, max_duration, record_interval,
-                           ball, aim);
+            system::PuttSpec spec;
+            spec.angle = angle;
+            spec.speed = speed;
+            spec.hole = hole;
+            spec.ball = ball;
+            spec.aim = aim;
+            spec.ball_only = ball_only;
+            spec.max_duration = max_duration;
+            spec.record_interval = record_interval;
+            return putt(s, data, spec);
           },
           py::arg("angle"), py::arg("speed"), py::arg("hole") = py::none(),
-          py::arg("ball_only") = false, py::arg("max_duration") = 30.0,
-          py::arg("record_interval") = 0.01, py::arg("data") = py::none(),
+          py::arg("ball_only") = false, py::arg("max_duration") = kPuttDefaults.max_duration,
+          py::arg("record_interval") = system::kTrajectoryInterval, py::arg("data") = py::none(),
           py::arg("ball") = py::none(), py::arg("aim") = py::none(),
           "One putt. Arm (default): hitting angle `angle` [rad] and club speed `speed` [m/s] "
           "within the safe "
@@ -422,8 +271,9 @@ void bind_system(py::module_& m) {
             return experiments::collect(s, holes, o, out).examples;
           },
           py::arg("out"), py::arg("situations") = "", py::arg("strategy") = "",
-          py::arg("max_full_putts") = kTeacherDefaults.max_full_putts, py::arg("seed") = 1,
-          py::arg("threads") = 0, py::arg("resume") = false,
+          py::arg("max_full_putts") = kTeacherDefaults.max_full_putts,
+          py::arg("seed") = kCollectDefaults.seed, py::arg("threads") = 0,
+          py::arg("resume") = false,
           "The teacher collects a data set at the region's collection points (or a --situations "
           "spec) into "
           "the CSV `out`, as `minigolf collect` does (resumable); returns the examples in index "
@@ -444,7 +294,8 @@ void bind_system(py::module_& m) {
             py::gil_scoped_release release;
             return experiments::evaluate_model(s, model, region, o);
           },
-          py::arg("model"), py::arg("situations") = 30, py::arg("seed") = 1, py::arg("threads") = 0,
+          py::arg("model"), py::arg("situations") = kEvaluateDefaults.situations,
+          py::arg("seed") = kEvaluateDefaults.seed, py::arg("threads") = 0,
           py::arg("oracle") = true, py::arg("region") = "",
           "The robot plays `situations` random test situations of the field's region (or a "
           "--situations spec) "

@@ -7,8 +7,8 @@
 /// `mjData` only and never re-parses the model.
 ///
 /// Threads: a `World` may be shared by any number of threads, each stepping its own `mjData`;
-/// worlds may be constructed concurrently. The process-wide `mjcb_contactfilter` is set once,
-/// by the first construction, to a pure function of (model, data).
+/// worlds may be constructed concurrently. No process-wide MuJoCo callback is set: contacts come
+/// from the model alone (contype/conaffinity, excluded body pairs, predefined geom pairs).
 ///
 /// Ground contact: MuJoCo 2.2.2's heightfield contacts make a rolling ball drift sideways and
 /// lose speed (measured: 2-9 cm per metre, 5-17 % speed; docs/physics.md), so the heightfield
@@ -17,9 +17,10 @@
 ///
 /// Ball physics (see docs/physics.md): condim-3 contacts for sliding friction, plus an explicit
 /// rolling-resistance torque of magnitude rho r N opposing the ball's rolling (Penner's model),
-/// applied before every step. The ground under the hole opening is removed by a contact filter
-/// (a heightfield cannot have a hole), so the ball falls into a geometric cup and lips out or
-/// drops as a real ball does.
+/// applied before every step. The ground under the hole opening is removed by moving the ground's
+/// collision geom (a mocap body) out of reach while the ball's centre is over the opening (a
+/// heightfield cannot have a hole), so the ball falls into a geometric cup and lips out or drops
+/// as a real ball does.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -85,8 +86,9 @@ struct WorldIds {
   int ball_dof = -1;     ///< first of 6 dofs
   int ground_geom = -1;  ///< what the ball rolls on: the tangent box or the heightfield
   int ground_mocap = -1;
-  int surface_geom = -1;  ///< the heightfield (drawn; collides only in kHeightfield mode)
-  int hole_mocap = -1;    ///< the cup's body (kOne) or the floor's (kPerSegment)
+  int surface_geom = -1;        ///< the heightfield as drawn (never collides)
+  int lane_contact_mocap = -1;  ///< kHeightfield: the mocap copy of it that collides (else -1)
+  int hole_mocap = -1;          ///< the cup's body (kOne) or the floor's (kPerSegment)
   int hole_floor_geom = -1;
   int first_wall_geom = -1;   ///< cup wall segments are consecutive geoms
   int first_wall_mocap = -1;  ///< kPerSegment: their consecutive bodies (kOne: -1)
@@ -172,6 +174,7 @@ class World {
 
   ModelPtr model_;
   ModelPtr fine_model_;  ///< model_ with timestep / kImpactSubsteps (step_fine)
+  std::array<mjtNum, 3> lane_contact_pos_{};  ///< kHeightfield: its body's place [m] (as compiled)
   WorldIds ids_;
   std::string mjcf_;
   std::uint64_t instance_id_ = 0;

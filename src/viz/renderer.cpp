@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -20,14 +19,6 @@ namespace {
 std::string glfw_last_error;
 
 void on_glfw_error(int, const char* text) { glfw_last_error = text ? text : "unknown"; }
-
-/// MuJoCo's default error handler exits without naming the program; rendering errors (an OpenGL
-/// too old, no framebuffer) end the command with one line instead.
-void on_mujoco_error(const char* text) {
-  std::fprintf(stderr, "minigolf: error: MuJoCo renderer: %s\n", text);
-  std::fflush(stderr);
-  std::_Exit(1);
-}
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -182,8 +173,6 @@ mjvCamera camera_preset(const std::string& name, const sim::World& world, const 
 
 Renderer::Renderer(const sim::World& world, int width, int height)
     : world_(world), width_(width), height_(height) {
-  static std::once_flag handler;
-  std::call_once(handler, [] { mju_user_error = on_mujoco_error; });
   check_image_size(width, height);
   m_ = mj_copyModel(nullptr, world.model());
   if (!m_) throw Error("renderer: cannot copy the model");

@@ -71,6 +71,10 @@ const std::vector<std::string>& camera_names();
 /// InputError for an unknown name.
 mjvCamera camera_preset(const std::string& name, const sim::World& world, const mjData* d);
 
+/// Errors: the constructor throws InputError for a bad size and Error when the model cannot be
+/// copied. MuJoCo's own fatal errors while drawing (an OpenGL context too old, no framebuffer) go
+/// to its process-wide handler, which the renderer leaves alone: the `minigolf` command and the
+/// Python module set one that prints one line and exits 1 (sim/mujoco_errors.hpp).
 class Renderer {
  public:
   /// Needs a current OpenGL context. `width` x `height`: the off-screen buffer [pixels].

@@ -9,35 +9,13 @@
 #include "core/io.hpp"
 #include "ds/demonstrations.hpp"
 #include "ds/hitting_model.hpp"
+#include "seds_test_util.hpp"
 #include "stats/gmr.hpp"
 
 namespace mg::ds {
 namespace {
 
-// Target-frame samples of generated demonstrations (moving samples only).
-SedsData demo_data(int count, std::uint64_t seed, double noise_scale = 1.0) {
-  DemoGeneratorConfig cfg;
-  cfg.count = count;
-  cfg.position_noise *= noise_scale;
-  cfg.velocity_noise *= noise_scale;
-  Rng rng(seed);
-  const auto demos = generate_demonstrations(cfg, rng);
-  std::vector<Eigen::Vector3d> y, yd;
-  for (const auto& d : demos)
-    for (std::size_t i = 0; i < d.size(); ++i)
-      if (d.xdot[i].norm() > 0.075) {
-        y.push_back(d.x[i] - cfg.ball);
-        yd.push_back(d.xdot[i]);
-      }
-  SedsData data;
-  data.y.resize(3, static_cast<Eigen::Index>(y.size()));
-  data.ydot.resize(3, static_cast<Eigen::Index>(y.size()));
-  for (std::size_t i = 0; i < y.size(); ++i) {
-    data.y.col(static_cast<Eigen::Index>(i)) = y[i];
-    data.ydot.col(static_cast<Eigen::Index>(i)) = yd[i];
-  }
-  return data;
-}
+using testing::demo_data;
 
 std::vector<SedsComponent> random_components(int k, Rng& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
@@ -124,57 +102,6 @@ TEST(Seds, JointGmmFormIsEquivalent) {
        {Eigen::Vector3d(-0.3, 0.05, 0.1), Eigen::Vector3d(0.01, -0.02, 0.0)}) {
     const Eigen::VectorXd a = gmr.predict(Eigen::VectorXd(y)).mean;
     EXPECT_LT((a - seds_velocity(comps, y)).norm(), 1e-9);
-  }
-}
-
-TEST(Seds, InitialGuessIsFeasible) {
-  const SedsData data = demo_data(4, 9);
-  SedsOptions opt;
-  opt.gaussians = 3;
-  for (const auto& c : seds_initial_guess(data, opt))
-    EXPECT_LT(stability_eigenvalue(c.a), -opt.optimizer_margin);
-}
-
-class SedsFit : public ::testing::TestWithParam<SedsObjective> {};
-
-TEST_P(SedsFit, ConstraintsHoldAndObjectiveImproves) {
-  const SedsData data = demo_data(5, 21);
-  SedsOptions opt;
-  opt.gaussians = 3;
-  opt.objective = GetParam();
-  opt.max_evaluations = 300;
-  const SedsResult r = fit_seds(data, opt);
-  EXPECT_LE(r.final_objective, r.initial_objective);
-  EXPECT_LE(r.max_eigenvalue, -opt.margin);
-  for (const auto& c : r.components) EXPECT_LE(stability_eigenvalue(c.a), -opt.margin);
-  // Lyapunov: f(y) . y < 0 everywhere away from the origin (checked on a grid, also far away).
-  for (double x = -3.0; x <= 3.0; x += 0.5)
-    for (double y = -3.0; y <= 3.0; y += 0.75)
-      for (double z = -1.0; z <= 2.0; z += 0.75) {
-        const Eigen::Vector3d p(x * 0.3, y * 0.3, z * 0.3);
-        if (p.norm() < 1e-9) continue;
-        const Eigen::Vector3d f = seds_velocity(r.components, p);
-        ASSERT_TRUE(f.allFinite());
-        EXPECT_LT(f.dot(p), 0.0);
-      }
-  // Same seed, same bits.
-  const SedsResult again = fit_seds(data, opt);
-  EXPECT_EQ(pack_seds(r.components, opt.objective, opt.covariance_floor),
-            pack_seds(again.components, opt.objective, opt.covariance_floor));
-}
-
-INSTANTIATE_TEST_SUITE_P(Objectives, SedsFit,
-                         ::testing::Values(SedsObjective::kLikelihood, SedsObjective::kMse));
-
-TEST(Seds, NoisyAndFewDemonstrationsStillGiveAStableModel) {
-  for (const auto& [count, noise] :
-       std::vector<std::pair<int, double>>{{1, 1.0}, {2, 10.0}, {6, 20.0}}) {
-    const SedsData data = demo_data(count, 100 + static_cast<std::uint64_t>(count), noise);
-    SedsOptions opt;
-    opt.gaussians = 2;
-    opt.max_evaluations = 200;
-    const SedsResult r = fit_seds(data, opt);
-    EXPECT_LE(r.max_eigenvalue, -opt.margin) << count << " demos, noise x" << noise;
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Shared helpers for the learning tests: seeded synthetic datasets and scratch directories.
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -13,6 +14,7 @@
 #include "core/io.hpp"
 #include "core/rng.hpp"
 #include "learning/dataset.hpp"
+#include "learning/learner.hpp"
 
 namespace mg::learning::testing {
 
@@ -90,6 +92,20 @@ inline void write_dataset(const Dataset& d, const std::filesystem::path& path) {
     rows.push_back(r);
   }
   mg::write_file_atomic(path, mg::format_csv(header, rows));
+}
+
+// Training options of the tests: method `m`, K = k (0: chosen), seed 7.
+inline TrainOptions options(Method m, int k = 0) {
+  TrainOptions o;
+  o.method = m;
+  o.num_gaussians = k;
+  o.seed = 7;
+  return o;
+}
+
+inline bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
 }
 
 }  // namespace mg::learning::testing

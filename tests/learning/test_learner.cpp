@@ -14,14 +14,8 @@ namespace {
 
 using testing::flat_field;
 using testing::linear_map;
-
-TrainOptions options(Method m, int k = 0) {
-  TrainOptions o;
-  o.method = m;
-  o.num_gaussians = k;
-  o.seed = 7;
-  return o;
-}
+using testing::options;
+using testing::same_bits;
 
 TEST(LearningModel, FlatFieldLawIsRecoveredFromFewNoisyPoints) {
   // theta = atan2(xi_y, xi_x) and a sqrt-of-distance speed from 5-30 noisy examples. The bounds
@@ -156,34 +150,6 @@ TEST(LearningModel, ConstantOutputIsPredictedExactly) {
   }
 }
 
-bool same_bits(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
-  return a.rows() == b.rows() && a.cols() == b.cols() &&
-         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
-}
-
-TEST(LearningModel, SaveLoadRoundTripIsBitIdentical) {
-  testing::ScratchDir dir;
-  const Dataset d = flat_field(25, 13);
-  const Eigen::MatrixXd q = flat_field(50, 14).inputs;
-  for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
-    const Model model = train(d, options(m));
-    const auto path = dir / "model.json";
-    save_model(model, path);
-    const Model back = load_model(path);
-    const auto path2 = dir / "model2.json";
-    save_model(back, path2);
-    EXPECT_EQ(read_text_file(path), read_text_file(path2)) << method_name(m);
-    const Predictions a = predict(model, q);
-    const Predictions b = predict(back, q);
-    EXPECT_TRUE(same_bits(a.mean, b.mean)) << method_name(m);
-    EXPECT_TRUE(same_bits(a.std, b.std)) << method_name(m);
-    EXPECT_EQ(report_to_json(model).dump(), report_to_json(back).dump());
-    const auto j = nlohmann::json::parse(read_text_file(path));
-    EXPECT_EQ(j.at("format_version"), kModelFormatVersion);
-    EXPECT_EQ(j.at("method"), std::string(method_name(m)));
-  }
-}
-
 TEST(LearningModel, AResidualModelAddsItsCorrectionToItsPriorAndRoundTrips) {
   testing::ScratchDir dir;
   const Dataset d = flat_field(20, 21);
@@ -223,48 +189,6 @@ TEST(LearningModel, SameSeedSameModel) {
   }
 }
 
-void expect_model_error(const nlohmann::json& j, const std::string& needle) {
-  try {
-    model_from_json(j, "m.json");
-    FAIL() << "expected InputError";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
-
-TEST(LearningModel, BrokenOrIncompatibleModelFilesAreClearErrors) {
-  EXPECT_THROW(load_model(testing::kDataDir / "truncated_model.json"), InputError);
-  try {
-    load_model(testing::kDataDir / "future_model.json");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("format_version"), std::string::npos) << e.what();
-  }
-  const nlohmann::json gpr = model_to_json(train(flat_field(10, 16), options(Method::kGpr)));
-  const nlohmann::json gmr = model_to_json(train(flat_field(10, 16), options(Method::kGmr, 2)));
-  nlohmann::json j = gpr;
-  j.erase("format_version");
-  expect_model_error(j, "format_version");
-  j = gpr;
-  j["method"] = "svm";
-  expect_model_error(j, "gpr, gmr, joint-gmr");
-  j = gpr;
-  j["gps"][1]["noise_std"] = "high";
-  expect_model_error(j, "gps[1].noise_std");
-  j = gpr;
-  j["gps"][0]["length_scales"] = {1.0};
-  expect_model_error(j, "length scales");
-  j = gmr;
-  j["gmms"][0]["priors"] = {0.2, 0.2};
-  expect_model_error(j, "gmms[0]");
-  j = gmr;
-  j["gmms"].erase(1);
-  expect_model_error(j, "gmms");
-  j = gmr;
-  j["method"] = "joint-gmr";
-  expect_model_error(j, "gmms");
-}
-
 TEST(LearningModel, ScoresMatchTheirDefinitions) {
   const Dataset d = flat_field(15, 17);
   const Dataset v = flat_field(40, 18);
@@ -276,76 +200,6 @@ TEST(LearningModel, ScoresMatchTheirDefinitions) {
     const Eigen::ArrayXd var = p.std.col(o).array().square();
     EXPECT_NEAR(s[o].mse, r.square().mean(), 1e-12);
     EXPECT_NEAR(s[o].nlpd, (0.5 * (2 * M_PI * var).log() + 0.5 * r.square() / var).mean(), 1e-9);
-  }
-}
-
-TEST(LearningModel, NumberOfGaussiansByBicOrCrossValidation) {
-  const Dataset d = flat_field(30, 19);
-  for (ComponentSelection sel : {ComponentSelection::kBic, ComponentSelection::kCrossValidation}) {
-    TrainOptions o = options(Method::kJointGmr);
-    o.selection = sel;
-    o.max_gaussians = 4;
-    const Model m = train(d, o);
-    EXPECT_GE(m.reports[0].n_gaussians, 1);
-    EXPECT_LE(m.reports[0].n_gaussians, 4);
-    EXPECT_TRUE(std::isfinite(m.reports[0].bic));
-  }
-  TrainOptions too_many = options(Method::kGmr, 31);
-  EXPECT_THROW(train(d, too_many), InputError);
-  TrainOptions bad = options(Method::kGmr);
-  bad.restarts = 0;
-  EXPECT_THROW(train(d, bad), InputError);
-  EXPECT_THROW(parse_method("svm"), InputError);
-  EXPECT_EQ(parse_method("joint-gmr"), Method::kJointGmr);
-}
-
-TEST(LearningModel, RegCovarIsAPriorThatShrinksWithTheData) {
-  // Issue 13: reg_covar = 0.05 / N (at most 1e-2) unless cross-validation measures better.
-  // Up to 5 rows it is the old fixed 1e-2, to the bit.
-  const Dataset few = flat_field(5, 21, 0.01);
-  TrainOptions fixed = options(Method::kGmr, 2);
-  fixed.choose_reg_covar = false;
-  fixed.em.reg_covar = 1e-2;
-  const Model chosen_few = train(few, options(Method::kGmr, 2));
-  const Model fixed_few = train(few, fixed);
-  EXPECT_EQ(chosen_few.reports[0].reg_covar, 1e-2);
-  EXPECT_EQ(model_to_json(chosen_few).at("gmms").dump(),
-            model_to_json(fixed_few).at("gmms").dump());
-  // On 50 nearly noise-free rows of a curved 1-D law (bench/learning's "1d-clean" set), the
-  // old fixed 1e-2 over-smooths: averaged over 10 training sets, the chosen value predicts a
-  // validation set more closely (measured: about 1.7x lower speed MSE).
-  const auto curved = [](int n, std::uint64_t seed) {
-    mg::Rng rng(seed);
-    std::uniform_real_distribution<double> ux(0.5, 3.0);
-    std::normal_distribution<double> eps(0.0, 1e-3);
-    Dataset d;
-    d.source = "curved-1d";
-    d.input_names = {"xi_x"};
-    d.output_names = {"angle", "speed"};
-    d.inputs.resize(n, 1);
-    d.outputs.resize(n, 2);
-    for (int i = 0; i < n; ++i) {
-      const double x = ux(rng);
-      d.inputs(i, 0) = x;
-      d.outputs.row(i) << 0.25 * std::tanh(x) + eps(rng),
-          std::sqrt(1.2 * x + 0.25) + 0.05 * std::sin(3.0 * x) + eps(rng);
-    }
-    return d;
-  };
-  const Dataset val = curved(300, 99);
-  for (Method m : {Method::kGmr, Method::kJointGmr}) {
-    double chosen_mse = 0.0, old_mse = 0.0;
-    for (std::uint64_t seed = 0; seed < 10; ++seed) {
-      const Dataset d = curved(50, 1000 + seed);
-      const Model chosen = train(d, options(m, 3));
-      EXPECT_LE(chosen.reports[0].reg_covar, 1e-2);
-      fixed.method = m;
-      fixed.num_gaussians = 3;
-      const Model old = train(d, fixed);
-      for (const Score& sc : score(chosen, val)) chosen_mse += sc.mse;
-      for (const Score& sc : score(old, val)) old_mse += sc.mse;
-    }
-    EXPECT_LT(chosen_mse, 0.9 * old_mse) << method_name(m);
   }
 }
 

@@ -65,6 +65,45 @@ TEST(World, HoleOutsideTheLaneOrOnASteepSlopeIsAnError) {
   EXPECT_THROW(steep.make_data(), InputError);
 }
 
+// Contacts come from the model alone: building worlds of either ground sets no MuJoCo callback.
+TEST(World, SetsNoProcessWideMujocoCallback) {
+  for (GroundContact g : {GroundContact::kTangentPlane, GroundContact::kHeightfield}) {
+    WorldOptions o;
+    o.ground = g;
+    const World world(field::load_field("bank-shot"), o);
+    auto d = world.make_data();
+    world.step(d.get());
+  }
+  EXPECT_EQ(mjcb_contactfilter, nullptr);
+  EXPECT_EQ(mju_user_error, nullptr);
+}
+
+// With MuJoCo's heightfield contacts the ground is cut away over the hole opening as with the
+// tangent plane: no ball-ground contact while the ball's centre is over it, and the straight putt
+// that sinks on flat ground sinks.
+TEST(World, HeightfieldGroundOpensOverTheHole) {
+  WorldOptions o;
+  o.ground = GroundContact::kHeightfield;
+  const World world(field::load_field("flat"), o);
+  auto d = world.make_data();
+  const auto hole = world.field().hole.position;
+  const double r = 0.5 * world.field().hole.diameter;
+  world.place_ball(d.get(), {hole[0] + 0.5 * r, hole[1]});
+  for (int k = 0; k < 5; ++k) world.step(d.get());
+  for (int i = 0; i < d->ncon; ++i) EXPECT_FALSE(world.is_ball_ground(d->contact[i]));
+  world.place_ball(d.get(), {hole[0] + 2.0 * r, hole[1]});
+  for (int k = 0; k < 5; ++k) world.step(d.get());
+  int ground = 0;
+  for (int i = 0; i < d->ncon; ++i) ground += world.is_ball_ground(d->contact[i]);
+  EXPECT_GT(ground, 0);
+
+  PuttRequest q;
+  q.speed = 2.55;
+  EXPECT_TRUE(simulate_putt(world, d.get(), hole, q).sunk);
+  q.speed = 1.0;
+  EXPECT_FALSE(simulate_putt(world, d.get(), hole, q).sunk);
+}
+
 TEST(World, OptionsAreValidated) {
   WorldOptions o;
   o.timestep = 0.01;

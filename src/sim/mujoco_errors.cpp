@@ -1,0 +1,21 @@
+#include "sim/mujoco_errors.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+#include <mujoco/mujoco.h>
+
+namespace mg::sim {
+namespace {
+
+void print_and_exit(const char* text) {
+  std::fprintf(stderr, "minigolf: error: MuJoCo: %s\n", text);
+  std::fflush(stderr);
+  std::_Exit(1);
+}
+
+}  // namespace
+
+void exit_on_mujoco_error() { mju_user_error = print_and_exit; }
+
+}  // namespace mg::sim
