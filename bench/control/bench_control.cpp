@@ -7,6 +7,7 @@
 
 #include "control/full_system.hpp"
 #include "control/minigolf_module.hpp"
+#include "control/mujoco_arm.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
 #include "robot/wam_model.hpp"

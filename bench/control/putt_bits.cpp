@@ -99,13 +99,13 @@ int main() {
   const sim::World home = control::make_world_with_arm(field::load_field("flat"));
   const control::ModuleModel model =
       control::make_module_model(home, hitting, control::ModuleConfig{});
-  const sim::World world = control::make_world_with_arm(
-      field::load_field("flat"), robot::mount_at(robot::WamMount{}, stance));
+  const sim::World world = control::make_world_with_arm(field::load_field("flat"),
+                                                        robot::mount_at(robot::WamMount{}, stance));
   auto d = world.make_data();
   control::FullPuttOptions o;
   o.stance = stance;
-  const auto r = control::full_system_putt(world, model, d.get(), world.field().hole.position,
-                                           0.05, 1.4, o, nullptr);
+  const auto r = control::full_system_putt(world, model, d.get(), world.field().hole.position, 0.05,
+                                           1.4, o, nullptr);
   print("flat stance", world, d.get(), r);
   return 0;
 }

@@ -34,87 +34,6 @@ ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
                      world.ids().ball_dof);
 }
 
-LockstepRunner::LockstepRunner(const sim::World& world, const ModuleModel& model, mjData* d)
-    : world_(&world), model_(&model), d_(d), data_(model), truth_(world, d), perception_(&truth_) {
-  steps_per_tick_ =
-      static_cast<int>(std::lround(model.config().core_period() / world.model()->opt.timestep));
-  steps_per_tick_ = std::max(steps_per_tick_, 1);
-  durations_us_.reserve(1 << 16);
-  module_reset(model, data_, d);
-}
-
-void LockstepRunner::reset_module() {
-  module_reset(*model_, data_, d_);
-  durations_us_.clear();
-  steps_ = 0;
-}
-
-void LockstepRunner::set_perception(perception::Perception* perception) {
-  perception_ = perception != nullptr ? perception : &truth_;
-}
-
-void physics_step(const sim::World& world, const ModuleModel& model, mjData* d) {
-  const mjtNum* club = d->geom_xpos + 3 * model.club_geom();
-  const mjtNum* ball = d->geom_xpos + 3 * model.ball_geom();
-  const double dx = club[0] - ball[0], dy = club[1] - ball[1], dz = club[2] - ball[2];
-  if (dx * dx + dy * dy + dz * dz < kImpactZone * kImpactZone)
-    world.step_fine(d);
-  else
-    world.step(d);
-}
-
-void LockstepRunner::module_tick_if_due() {
-  if (steps_ % steps_per_tick_ == 0) {
-    if (data_.tick % model_->config().robot_update_divider == 0)
-      robot_update(*model_, data_, perception_->perceive(d_->time));
-    MujocoArm arm(model_->arm(), d_);
-    const auto t0 = std::chrono::steady_clock::now();
-    control_tick(*model_, data_, arm);
-    const auto t1 = std::chrono::steady_clock::now();
-    durations_us_.push_back(
-        static_cast<float>(std::chrono::duration<double, std::micro>(t1 - t0).count()));
-  }
-}
-
-void LockstepRunner::step() {
-  module_tick_if_due();
-  physics_step(*world_, *model_, d_);
-  ++steps_;
-}
-
-void LockstepRunner::restore(const ModuleData& data, long steps) {
-  data_ = data;
-  steps_ = steps;
-  durations_us_.clear();
-}
-
-void LockstepRunner::tick_without_physics() {
-  module_tick_if_due();
-  const long n = steps_per_tick_ - steps_ % steps_per_tick_;
-  d_->time += static_cast<double>(n) * world_->model()->opt.timestep;
-  steps_ += n;
-}
-
-CoreTiming LockstepRunner::timing() const {
-  CoreTiming t;
-  t.ticks = static_cast<int>(durations_us_.size());
-  if (durations_us_.empty()) return t;
-  std::vector<float> s = durations_us_;
-  std::sort(s.begin(), s.end());
-  const std::size_t i99 =
-      std::min(s.size() - 1, static_cast<std::size_t>(0.99 * static_cast<double>(s.size())));
-  t.core_update_p99_us = s[i99];
-  t.core_update_max_us = s.back();
-  double sum = 0.0;
-  const double budget_us = model_->config().core_period() * 1e6;
-  for (float v : s) {
-    sum += v;
-    if (v > budget_us) ++t.overruns;
-  }
-  t.core_update_mean_us = sum / static_cast<double>(s.size());
-  return t;
-}
-
 namespace {
 
 void track_ratios(const ModuleModel& model, const mjData* d, const ModuleData& data,
@@ -147,29 +66,32 @@ void track_ratios(const ModuleModel& model, const mjData* d, const ModuleData& d
 
 // --- Execution noise (FullPuttOptions::torque_noise / placement_noise). Disabled at zero: then
 // nothing here touches mjData and the run is bit-identical to a noise-free build.
-class TorqueNoise {
+/// A hook of the putt's core loop: before each physics step on a core tick, a fresh draw per
+/// joint replaces the previous one in d->qfrc_applied (added to whatever else is applied there).
+/// The module never reads qfrc_applied, so drawing after the tick's write is the same as before.
+class TorqueNoise final : public CoreHooks {
  public:
-  TorqueNoise(const ModuleModel& model, const mjModel* m, const FullPuttOptions& options)
+  TorqueNoise(const ModuleModel& model, const CoreLoop& loop, const FullPuttOptions& options)
       : arm_(&model.arm()),
+        d_(loop.data()),
         enabled_(options.torque_noise > 0.0),
-        rng_(derive_seed(options.seed, 1)) {
-    steps_per_tick_ =
-        std::max(1, static_cast<int>(std::lround(model.config().core_period() / m->opt.timestep)));
+        rng_(derive_seed(options.seed, 1)),
+        steps_per_tick_(loop.steps_per_tick()) {
     for (int j = 0; j < 7; ++j) std_[j] = options.torque_noise * arm_->torque_limit()[j];
   }
-  /// Before physics step `step` of the runner: on a core tick, a fresh draw per joint replaces
-  /// the previous one in d->qfrc_applied (added to whatever else is applied there).
-  void before_step(long step, mjData* d) {
+  bool enabled() const { return enabled_; }
+  void before_step(long step) override {
     if (!enabled_ || step % steps_per_tick_ != 0) return;
     for (int j = 0; j < 7; ++j) {
       const double tau = std_[j] * normal_(rng_);
-      d->qfrc_applied[arm_->dof_address(j)] += tau - last_[j];
+      d_->qfrc_applied[arm_->dof_address(j)] += tau - last_[j];
       last_[j] = tau;
     }
   }
 
  private:
   const robot::ArmModel* arm_;
+  mjData* d_;
   bool enabled_;
   Rng rng_;
   std::normal_distribution<double> normal_{0.0, 1.0};
@@ -501,7 +423,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   FullPuttResult r;
   r.ball_start = ball_start;
   r.min_position_margin = 1e9;
-  LockstepRunner run(world, model, d);
+  CoreLoop run(world, model, d);
   // The plant's vision: late and off by this putt's error.
   const bool plant_vision = options.perception_latency > 0.0 ||
                             options.perceived_ball_offset[0] != 0.0 ||
@@ -515,10 +437,10 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     run.set_perception(&from_stance);
   else if (plant_vision)
     run.set_perception(&delayed);
-  TorqueNoise torque_noise(model, world.model(), options);
+  TorqueNoise torque_noise(model, run, options);
+  if (torque_noise.enabled()) run.set_hooks(&torque_noise);
   double t_module_hit = -1.0;  // [s] state the module measured when it saw the hit (-1: not yet)
   const auto step = [&] {
-    torque_noise.before_step(run.steps(), d);
     const double t_state = d->time;
     run.step();
     if (t_module_hit < 0.0 && run.module().ball_hit) t_module_hit = t_state;

@@ -167,6 +167,7 @@ void module_reset(const ModuleModel& model, ModuleData& data, const Vector7& q) 
   data.hit_start_tick = 0;
   data.compute_fault = false;
   data.overrun_fault = false;
+  data.hook_fault = false;
   data.v_ds.setZero();
   data.seen = {};
   data.seen_tick = -1;
@@ -292,8 +293,8 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
   obs.request_valid = data.request_valid;
   obs.perception_fresh = perception_fresh(model, data);
   obs.ball_in_place = ball_in_place(model, data);
-  bool fault =
-      data.compute_fault || data.overrun_fault || !finite(q) || !finite(qd) || !finite(data.q_ref);
+  bool fault = data.compute_fault || data.overrun_fault || data.hook_fault || !finite(q) ||
+               !finite(qd) || !finite(data.q_ref);
   if (!fault) {
     for (int j = 0; j < 7; ++j) {
       if (q[j] < arm.position_lower()[j] - 0.02 || q[j] > arm.position_upper()[j] + 0.02 ||

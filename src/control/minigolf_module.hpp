@@ -150,6 +150,8 @@ class ModuleData {
   bool compute_fault = false;       ///< IK/RNEA failed last tick: reported as a fault this tick
   /// Set by a real-time scheduler after an overrun streak; a fault until the module is reset.
   bool overrun_fault = false;
+  /// Set by the core loop when a hook threw (control/core_loop.hpp); a fault until reset.
+  bool hook_fault = false;
   perception::Perceived seen;   ///< last perception handed to the robot update
   std::int64_t seen_tick = -1;  ///< core tick of the last fresh perception (-1: never)
   TickInfo last;

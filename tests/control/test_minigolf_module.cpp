@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "control/full_system.hpp"
+#include "control/mujoco_arm.hpp"
 #include "field/field.hpp"
 
 // Counts heap allocations so the real-time claim of the core tick is tested, not assumed.
