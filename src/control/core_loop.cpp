@@ -91,26 +91,19 @@ CoreTiming TimingHistogram::summary() const noexcept {
   return t;
 }
 
-// ---- physics ----
-
-void physics_step(const sim::World& world, const ModuleModel& model, mjData* d) {
-  const mjtNum* club = d->geom_xpos + 3 * model.club_geom();
-  const mjtNum* ball = d->geom_xpos + 3 * model.ball_geom();
-  const double dx = club[0] - ball[0], dy = club[1] - ball[1], dz = club[2] - ball[2];
-  if (dx * dx + dy * dy + dz * dz < kImpactZone * kImpactZone)
-    world.step_fine(d);
-  else
-    world.step(d);
-}
-
 // ---- the loop ----
 
 CoreLoop::CoreLoop(const sim::World& world, const ModuleModel& model, mjData* d,
+                   CoreLoopOptions options)
+    : CoreLoop(world, find_sim_ids(world), model, d, options) {}
+
+CoreLoop::CoreLoop(const sim::World& world, const SimIds& ids, const ModuleModel& model, mjData* d,
                    CoreLoopOptions options)
     : world_(&world),
       model_(&model),
       d_(d),
       options_(options),
+      ids_(ids),
       own_(std::make_unique<ModuleData>(model)),
       data_(own_.get()),
       truth_(world, d),
@@ -118,7 +111,7 @@ CoreLoop::CoreLoop(const sim::World& world, const ModuleModel& model, mjData* d,
   steps_per_tick_ = std::max(
       1, static_cast<int>(std::lround(model.config().core_period() / world.model()->opt.timestep)));
   budget_ns_ = static_cast<std::int64_t>(std::llround(model.config().core_period() * 1e9));
-  module_reset(model, *data_, d);
+  module_reset(model, *data_, ids_.arm, d);
 }
 
 void CoreLoop::set_perception(perception::Perception* perception) {
@@ -148,7 +141,7 @@ void CoreLoop::call_hook(Call&& call) noexcept {
 
 void CoreLoop::module_tick() noexcept {
   ModuleData& data = *data_;
-  MujocoArm arm(model_->arm(), d_);
+  MujocoArm arm(ids_.arm, d_);
   const bool robot_tick = data.tick % model_->config().robot_update_divider == 0;
   // Timed: read, module_update and write (the robot update and the hooks are not the core
   // update's).
@@ -171,7 +164,7 @@ void CoreLoop::module_tick() noexcept {
 
 void CoreLoop::physics() noexcept {
   if (options_.fine_impact)
-    physics_step(*world_, *model_, d_);
+    physics_step(*world_, ids_, d_);
   else
     world_->step(d_);
 }

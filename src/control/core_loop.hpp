@@ -3,6 +3,9 @@
 /// putt harness (full_system.hpp), the console's lockstep and real-time modes and the viewer
 /// (system/session.hpp). ros2_control's read -> update -> write, libfranka's control callback.
 ///
+/// The loop is the simulator's side (it owns the MuJoCo adapter, control/mujoco_arm.hpp); the
+/// module it runs knows no simulator.
+///
 /// One tick (one core period = steps_per_tick physics steps):
 ///
 ///   measured = arm.read()                               the adapter: joints and clock
@@ -27,7 +30,8 @@
 #include <memory>
 
 #include "control/minigolf_module.hpp"
-#include "perception/perception.hpp"
+#include "control/mujoco_arm.hpp"
+#include "perception/simulator_perception.hpp"
 #include "sim/world.hpp"
 
 namespace mg::control {
@@ -106,19 +110,14 @@ struct CoreLoopOptions {
   bool fine_impact = true;
 };
 
-/// [m] Within this distance of the ball centre, the club head's centre is "at the impact": the
-/// physics steps in kImpactSubsteps finer steps (sim::World::step_fine) so the launch does not
-/// depend on where in a 1 ms step the club first touches the ball.
-constexpr double kImpactZone = 0.06;
-/// One physics step of a world with the arm: fine near the impact, else the plain step.
-/// Real-time safe.
-void physics_step(const sim::World& world, const ModuleModel& model, mjData* d);
-
 class CoreLoop {
  public:
   /// The module reset to Idle at the arm's state in `d`. `world`, `model` and `d` must outlive
   /// the loop. Perception defaults to the simulator's ground truth.
   CoreLoop(const sim::World& world, const ModuleModel& model, mjData* d,
+           CoreLoopOptions options = {});
+  /// The same with the world's ids found already (find_sim_ids(world)).
+  CoreLoop(const sim::World& world, const SimIds& ids, const ModuleModel& model, mjData* d,
            CoreLoopOptions options = {});
   CoreLoop(const CoreLoop&) = delete;
   CoreLoop& operator=(const CoreLoop&) = delete;
@@ -149,6 +148,8 @@ class CoreLoop {
   const ModuleData& module() const { return *data_; }
   const ModuleModel& model() const { return *model_; }
   const sim::World& world() const { return *world_; }
+  /// The simulator's ids of the arm, club head and ball in the loop's world.
+  const SimIds& ids() const { return ids_; }
   mjData* data() const { return d_; }
   long steps() const { return steps_; }
   int steps_per_tick() const { return steps_per_tick_; }
@@ -170,6 +171,7 @@ class CoreLoop {
   const ModuleModel* model_;
   mjData* d_;
   CoreLoopOptions options_;
+  SimIds ids_;
   std::unique_ptr<ModuleData> own_;  ///< the module data the loop was made with
   ModuleData* data_;
   perception::SimulatorPerception truth_;

@@ -11,18 +11,11 @@
 
 #include "control/core_loop.hpp"
 #include "control/minigolf_module.hpp"
+#include "control/mujoco_arm.hpp"
 #include "sim/putt.hpp"
 #include "sim/world.hpp"
 
 namespace mg::control {
-
-/// The field's world with the WAM + club inserted (default mount).
-sim::World make_world_with_arm(field::Field field, const robot::WamMount& mount = {},
-                               sim::WorldOptions options = {});
-
-/// The module model for a world built by make_world_with_arm with the same mount.
-ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
-                              const ModuleConfig& config, const robot::WamMount& mount = {});
 
 /// How a full-system putt brings the arm to the rest pose of its angle before the hit.
 enum class RestStart {
@@ -165,10 +158,6 @@ class PuttScratch {
  private:
   std::unique_ptr<Impl> impl_;
 };
-
-/// A ball-only world matching `arm_world` (a world of make_world_with_arm): the same field and
-/// world options, without the arm. For FullPuttOptions::ball_world.
-sim::World make_ball_world(const sim::World& arm_world);
 
 /// The module's IK fixed point [rad] (7) for the rest pose of `angle` [rad]: where its Rest motion
 /// converges (velocity IK iterated from the default posture until it stands still).

@@ -12,12 +12,12 @@ using namespace mg::control;  // the module's types, used throughout the core si
 namespace {
 
 /// The arm at its default rest posture, the ball on the tee, the field's hole.
-sim::DataPtr rest_data(const sim::World& world, const ModuleModel& model) {
+sim::DataPtr rest_data(const sim::World& world) {
   sim::DataPtr d = world.make_data();
   world.reset(d.get());
   robot::Vector7 rest;
   for (int j = 0; j < 7; ++j) rest[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
-  robot::set_joint_positions(model.arm(), d.get(), rest);
+  robot::set_joint_positions(find_sim_ids(world).arm, d.get(), rest);
   mj_forward(world.model(), d.get());
   return d;
 }
@@ -45,7 +45,7 @@ SessionCore::SessionCore(const sim::World& world, const ModuleModel& model, bool
                          SessionObserver* observer, const sim::OutcomeTracker* tracker)
     : snapshot(sized_snapshot(world.model())),
       world_(world),
-      d_(rest_data(world, model)),
+      d_(rest_data(world)),
       loop_(world, model, d_.get(), CoreLoopOptions{.fine_impact = !realtime}),
       truth_(world, d_.get()),
       observer_(observer),
@@ -190,7 +190,7 @@ void SessionCore::apply(const CoreCommand& c) noexcept {
         reply(Reply::kLoadRefusedNotIdle);
       } else {
         // Perception stale until the next robot update.
-        module_reset(*c.model, *c.data, d_.get());
+        module_reset(*c.model, *c.data, loop_.ids().arm, d_.get());
         loop_.replace_module(*c.model, *c.data);
         reply(Reply::kLoaded);
       }

@@ -15,6 +15,10 @@
 #include "field/field.hpp"
 #include "robot/wam_model.hpp"
 
+namespace mg::testing {
+long allocations();  // test_minigolf_module.cpp counts operator new
+}  // namespace mg::testing
+
 namespace mg::control {
 namespace {
 
@@ -30,7 +34,7 @@ struct Rig {
     world.reset(d.get());
     robot::Vector7 q;
     for (int j = 0; j < 7; ++j) q[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
-    robot::set_joint_positions(model.arm(), d.get(), q);
+    robot::set_joint_positions(find_sim_ids(world).arm, d.get(), q);
     mj_forward(world.model(), d.get());
     return d;
   }
@@ -80,7 +84,8 @@ TEST(CoreLoop, GivesTheBitsOfTheModuleFunctionsCalledByHand) {
   auto b = rig().rest_data();
   CoreLoop loop(rig().world, model, a.get());
   ModuleData md(model);
-  module_reset(model, md, b.get());
+  const SimIds ids = find_sim_ids(rig().world);
+  module_reset(model, md, ids.arm, b.get());
   perception::SimulatorPerception truth(rig().world, b.get());
   request_rest(model, loop.module(), 0.1);
   request_rest(model, md, 0.1);
@@ -88,9 +93,9 @@ TEST(CoreLoop, GivesTheBitsOfTheModuleFunctionsCalledByHand) {
     loop.tick();
     if (md.tick % model.config().robot_update_divider == 0)
       robot_update(model, md, truth.perceive(b->time));
-    MujocoArm arm(model.arm(), b.get());
+    MujocoArm arm(ids.arm, b.get());
     control_tick(model, md, arm);
-    for (int s = 0; s < 2; ++s) physics_step(rig().world, model, b.get());
+    for (int s = 0; s < 2; ++s) physics_step(rig().world, ids, b.get());
   }
   const int nq = rig().world.model()->nq, nv = rig().world.model()->nv;
   EXPECT_TRUE(std::equal(a->qpos, a->qpos + nq, b->qpos));
@@ -139,9 +144,32 @@ TEST(CoreLoop, AHooksExceptionIsAFaultThatBrakesTheArm) {
     EXPECT_NE(loop.module().state, ModuleState::kRest) << where;  // braking, then idle
     EXPECT_EQ(loop.steps(), 500);                                 // the physics went on
     // Cleared only by a reset.
-    module_reset(rig().model, loop.module(), d.get());
+    module_reset(rig().model, loop.module(), loop.ids().arm, d.get());
     EXPECT_FALSE(loop.module().hook_fault);
   }
+}
+
+// Real-time contract: a tick (read, robot update, module update, write, the physics steps, the
+// hooks) allocates nothing, through the rest pose, the hit and the braking.
+TEST(CoreLoop, ATickAllocatesNothing) {
+  auto d = rig().rest_data();
+  CoreLoop loop(rig().world, rig().model, d.get());
+  Trace trace;
+  trace.calls.reserve(1 << 16);
+  trace.robot_times.reserve(1 << 12);
+  loop.set_hooks(&trace);
+  request_rest(rig().model, loop.module(), 0.0);
+  long allocations = 0;
+  bool hit = false;
+  for (int k = 0; k < 1500; ++k) {
+    if (!hit && loop.module().at_rest_pose) hit = request_hit(rig().model, loop.module(), 0.0, 1.0);
+    const long before = mg::testing::allocations();
+    loop.tick();
+    allocations += mg::testing::allocations() - before;
+  }
+  EXPECT_TRUE(hit);
+  EXPECT_NE(loop.module().state, ModuleState::kRest);
+  EXPECT_EQ(allocations, 0);
 }
 
 TEST(CoreLoop, RestoreContinuesWithTheSameBits) {
