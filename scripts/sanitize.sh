@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/), and the
-# real-time session (three threads at 500 Hz) under ThreadSanitizer (build-tsan/). Too slow for
-# every CI run on 2 cores; docs/robustness.md has the measured times. Any report fails the run.
+# session and console tests under ThreadSanitizer (build-tsan/): the real-time session's core
+# thread, I/O thread and user thread with their lock-free channels (a console flood and a viewer
+# included), the lockstep session, the console's signals, the core loop. Too slow for every CI run
+# on 2 cores; docs/robustness.md has the measured times. Any report fails the run.
 #
 # `ci` is the part CI runs on every landing (.ci/run, about 15 minutes on 2 cores with a warm
 # ccache): the parsers, files, learners and the console session (their unit and CLI tests) and
@@ -68,9 +70,10 @@ if [[ $what == tsan || $what == all ]]; then
   start=$(date +%s)
   cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINIGOLF_BUILD_BENCHMARKS=OFF "${launcher[@]}" \
     -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
-  nice -n 10 cmake --build build-tsan -j"$jobs" --target test_system test_system_realtime test_cli minigolf
+  nice -n 10 cmake --build build-tsan -j"$jobs" --target test_system test_system_realtime test_cli test_control minigolf
   built=$(date +%s)
+  tsan_suites='Session|System|Realtime|ConsoleSignalRealtime|Signals/ConsoleSignal|ConsoleCommand|CoreLoop|TimingHistogram'
   (cd build-tsan && TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \
-     nice -n 10 ctest -j1 --output-on-failure --timeout 3000 -R '^(Session|System|Realtime|ConsoleSignalRealtime)\.')
-  echo "sanitize.sh: TSan (real-time session): build $((built - start)) s, tests $(( $(date +%s) - built )) s"
+     nice -n 10 ctest -j1 --output-on-failure --timeout 3000 -R "^($tsan_suites)\.")
+  echo "sanitize.sh: TSan (session and console): build $((built - start)) s, tests $(( $(date +%s) - built )) s"
 fi

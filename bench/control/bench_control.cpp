@@ -7,6 +7,7 @@
 
 #include "control/full_system.hpp"
 #include "control/minigolf_module.hpp"
+#include "control/mujoco_arm.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
 #include "robot/wam_model.hpp"
@@ -24,20 +25,21 @@ struct Rig {
                                  control::ModuleConfig{})};
   sim::DataPtr d{world.make_data()};
   control::ModuleData md{model};
+  control::SimIds ids{control::find_sim_ids(world)};
   perception::SimulatorPerception truth{world, d.get()};
 
   void restart() {
     world.reset(d.get());
     robot::Vector7 q;
     for (int j = 0; j < 7; ++j) q[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
-    robot::set_joint_positions(model.arm(), d.get(), q);
+    robot::set_joint_positions(ids.arm, d.get(), q);
     mj_forward(world.model(), d.get());
-    control::module_reset(model, md, d.get());
+    control::module_reset(model, md, ids.arm, d.get());
     control::request_rest(model, md, 0.1);
   }
   /// The core tick on the simulated arm: read -> update -> write.
   void core_tick() {
-    control::MujocoArm arm(model.arm(), d.get());
+    control::MujocoArm arm(ids.arm, d.get());
     control::control_tick(model, md, arm);
   }
   /// Between ticks: the user update of the cycle (hit once at rest) and the robot update.

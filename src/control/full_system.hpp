@@ -1,88 +1,21 @@
 #pragma once
-/// The module in fast (lockstep) simulator mode: one thread steps the physics (1 ms, World::step),
-/// calls the core update every 2 steps (500 Hz) and, inside it, the robot update every 5th core
-/// tick; user requests are made between ticks. Deterministic: the same world, inputs and config
-/// give the same bits (wall-clock timing is measured but never fed back).
+/// Full-system putts: the module in fast (lockstep) simulator mode on the core loop
+/// (control/core_loop.hpp: physics in 1 ms steps, the core update every 2 steps, the robot update
+/// every 5th core tick), user requests between ticks. Deterministic: the same world, inputs and
+/// config give the same bits (wall-clock timing is measured but never fed back).
 #include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
 #include <vector>
 
+#include "control/core_loop.hpp"
 #include "control/minigolf_module.hpp"
 #include "control/mujoco_arm.hpp"
 #include "sim/putt.hpp"
 #include "sim/world.hpp"
 
 namespace mg::control {
-
-/// The field's world with the WAM + club inserted (default mount).
-sim::World make_world_with_arm(field::Field field, const robot::WamMount& mount = {},
-                               sim::WorldOptions options = {});
-
-/// The module model for a world built by make_world_with_arm with the same mount.
-ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
-                              const ModuleConfig& config, const robot::WamMount& mount = {});
-
-/// [m] Within this distance of the ball centre, the club head's centre is "at the impact": the
-/// physics steps in kImpactSubsteps finer steps (sim::World::step_fine) so the launch does not
-/// depend on where in a 1 ms step the club first touches the ball.
-constexpr double kImpactZone = 0.06;
-/// One physics step of a world with the arm: fine near the impact, else the plain step.
-/// Real-time safe. Used by the lockstep schedulers (LockstepRunner, the lockstep console); the
-/// real-time console steps plainly to keep its 2 ms deadlines.
-void physics_step(const sim::World& world, const ModuleModel& model, mjData* d);
-
-/// Wall-clock timing of the core updates of a run.
-struct CoreTiming {
-  double core_update_p99_us = 0.0;
-  double core_update_max_us = 0.0;
-  double core_update_mean_us = 0.0;
-  int overruns = 0;  ///< core updates that took longer than the core period
-  int ticks = 0;
-};
-
-/// One thread, lockstep: physics and module on the same clock.
-class LockstepRunner {
- public:
-  /// Perception defaults to the simulator's ground truth (simulator mode).
-  LockstepRunner(const sim::World& world, const ModuleModel& model, mjData* d);
-  /// Uses `perception` (not owned; must outlive the runner) for the robot update, e.g. the
-  /// network feed in normal mode; its clock is the simulated time d->time. nullptr: ground truth.
-  void set_perception(perception::Perception* perception);
-  /// One physics step; before it, on a core tick, the robot update (every robot_update_divider-th
-  /// tick, with the perception at d->time) and the core update. Records the core update's wall
-  /// time.
-  void step();
-  /// The rest of the current core period without physics: on a core-tick boundary the robot and
-  /// core updates as step() does them; then the clock (d->time) and the step count move on to
-  /// the next tick. For a plant the caller moves itself (kinematic approach).
-  void tick_without_physics();
-  /// Continues from a saved module state and step count (the caller restores `d` to match);
-  /// clears timing.
-  void restore(const ModuleData& data, long steps);
-  /// Resets the module to Idle at the current arm state of d and clears timing.
-  void reset_module();
-  ModuleData& module() { return data_; }
-  const ModuleData& module() const { return data_; }
-  long steps() const { return steps_; }
-  CoreTiming timing() const;
-
- private:
-  /// On a core-tick boundary: the robot update (every robot_update_divider-th tick) and the timed
-  /// core update.
-  void module_tick_if_due();
-
-  const sim::World* world_;
-  const ModuleModel* model_;
-  mjData* d_;
-  ModuleData data_;
-  perception::SimulatorPerception truth_;
-  perception::Perception* perception_;
-  int steps_per_tick_ = 2;
-  long steps_ = 0;
-  std::vector<float> durations_us_;  // reserved up front; grows only past the reservation
-};
 
 /// How a full-system putt brings the arm to the rest pose of its angle before the hit.
 enum class RestStart {
@@ -225,10 +158,6 @@ class PuttScratch {
  private:
   std::unique_ptr<Impl> impl_;
 };
-
-/// A ball-only world matching `arm_world` (a world of make_world_with_arm): the same field and
-/// world options, without the arm. For FullPuttOptions::ball_world.
-sim::World make_ball_world(const sim::World& arm_world);
 
 /// The module's IK fixed point [rad] (7) for the rest pose of `angle` [rad]: where its Rest motion
 /// converges (velocity IK iterated from the default posture until it stands still).

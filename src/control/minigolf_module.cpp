@@ -51,31 +51,6 @@ ModuleModel::ModuleModel(robot::ArmModel arm, ds::HittingModel hitting, const Mo
   for (int j = 0; j < 7; ++j) posture_[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
 }
 
-namespace {
-
-double sphere_radius(const mjModel* m, int geom) {
-  if (m == nullptr) throw InputError("module: expected an mjModel, got a null pointer");
-  if (geom < 0 || geom >= m->ngeom)
-    throw InputError(fmt::format("module: ball geom: expected 0..{}, got {}", m->ngeom - 1, geom));
-  if (m->geom_type[geom] != mjGEOM_SPHERE)
-    throw InputError(fmt::format("module: ball geom {}: expected a sphere", geom));
-  return m->geom_size[3 * geom];
-}
-
-}  // namespace
-
-ModuleModel::ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::HittingModel hitting,
-                         const ModuleConfig& config, int ball_geom, int ball_dof)
-    : ModuleModel(robot::ArmModel(m, mount), std::move(hitting), config,
-                  sphere_radius(m, ball_geom)) {
-  club_geom_ = mj_name2id(m, mjOBJ_GEOM, "club_head");
-  if (club_geom_ < 0) throw InputError("module: the model has no geom 'club_head'");
-  if (ball_dof < 0 || ball_dof + 6 > m->nv)
-    throw InputError(fmt::format("module: ball dof: expected 0..{}, got {}", m->nv - 6, ball_dof));
-  ball_geom_ = ball_geom;
-  ball_dof_ = ball_dof;
-}
-
 double ModuleModel::club_speed_cap(double angle) const {
   if (!(angle < 0.0)) return dynamic_cap_;
   const double u = std::min(1.0, -angle / config_.negative_cap_angle);
@@ -143,10 +118,6 @@ void enter_state(const ModuleModel& model, ModuleData& data, ModuleState next) {
 
 }  // namespace
 
-void module_reset(const ModuleModel& model, ModuleData& data, const mjData* d) {
-  module_reset(model, data, robot::joint_positions(model.arm(), d));
-}
-
 void module_reset(const ModuleModel& model, ModuleData& data, const Vector7& q) {
   data.state = ModuleState::kIdle;
   data.pending = Command::kNone;
@@ -167,6 +138,7 @@ void module_reset(const ModuleModel& model, ModuleData& data, const Vector7& q) 
   data.hit_start_tick = 0;
   data.compute_fault = false;
   data.overrun_fault = false;
+  data.hook_fault = false;
   data.v_ds.setZero();
   data.seen = {};
   data.seen_tick = -1;
@@ -292,8 +264,8 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
   obs.request_valid = data.request_valid;
   obs.perception_fresh = perception_fresh(model, data);
   obs.ball_in_place = ball_in_place(model, data);
-  bool fault =
-      data.compute_fault || data.overrun_fault || !finite(q) || !finite(qd) || !finite(data.q_ref);
+  bool fault = data.compute_fault || data.overrun_fault || data.hook_fault || !finite(q) ||
+               !finite(qd) || !finite(data.q_ref);
   if (!fault) {
     for (int j = 0; j < 7; ++j) {
       if (q[j] < arm.position_lower()[j] - 0.02 || q[j] > arm.position_upper()[j] + 0.02 ||

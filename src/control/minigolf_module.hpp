@@ -2,16 +2,17 @@
 /// The minigolf module (thesis chapter 4): the 500 Hz core update that turns the state machine
 /// (module_state.hpp), the hitting DS and the arm model into joint torques.
 ///
-/// Model/Data split: `ModuleModel` is immutable after construction (config, arm, hitting model,
-/// MuJoCo ids); `ModuleData` is the mutable, preallocated per-run state. One Data per thread.
+/// Model/Data split: `ModuleModel` is immutable after construction (config, arm, hitting model);
+/// `ModuleData` is the mutable, preallocated per-run state. One Data per thread.
 ///
 /// The core tick is read -> update -> write (control/arm_interface.hpp): `module_update` takes the
 /// measured joint state and returns joint torques and a status; an ArmBackend (the simulator,
 /// control/mujoco_arm.hpp; a fake in tests; a driver for the real WAM, docs/hardware.md) does
-/// the read and the write, `control_tick` does all three. Nothing here reads the simulator.
-/// Schedulers (full_system.hpp: lockstep; system/session.hpp: lockstep or three threads) call
+/// the read and the write, `control_tick` does all three. Nothing here knows the simulator: no
+/// MuJoCo header, id or mjData (the adapter, control/mujoco_arm.hpp, builds the model from a
+/// simulation and resets the module from one). The one scheduler, control/core_loop.hpp, calls
 /// `robot_update` every `robot_update_divider`-th core tick with the perception of that moment,
-/// then the core tick; the module code is the same for all.
+/// then the core tick; the module code is the same for putts, the console and the viewer.
 ///
 /// Hit detection, from measurements only: the ball is hit once the club head (FK of the measured
 /// joints, the head's box) reaches the perceived ball, or once the perceived ball has moved more
@@ -35,8 +36,6 @@
 /// clamped to the torque limits.
 #include <array>
 #include <cstdint>
-
-#include <mujoco/mujoco.h>
 
 #include "control/arm_interface.hpp"
 #include "control/module_config.hpp"
@@ -65,26 +64,17 @@ robot::Vector7 fir_step(FirFilter& f, const robot::Vector7& input);
 /// Immutable part of the module.
 class ModuleModel {
  public:
-  /// Without a simulator (a real arm, a fake): the arm, the hitting model, the config and the
-  /// ball's radius [m] (hit detection). Validates; throws mg::InputError.
+  /// The arm, the hitting model, the config and the ball's radius [m] (hit detection); in the
+  /// simulator control::make_module_model (control/mujoco_arm.hpp) reads the arm and the radius
+  /// from the compiled world. Validates; throws mg::InputError.
   ModuleModel(robot::ArmModel arm, ds::HittingModel hitting, const ModuleConfig& config,
               double ball_radius);
-  /// In the simulator: `m` must contain the arm (wam_bodies_mjcf) and a sphere geom `ball_geom`
-  /// (the ball, its radius is the ball radius). Validates the config; throws mg::InputError if a
-  /// name is missing.
-  ModuleModel(const mjModel* m, const robot::WamMount& mount, ds::HittingModel hitting,
-              const ModuleConfig& config, int ball_geom, int ball_dof);
 
   const ModuleConfig& config() const { return config_; }
   const robot::ArmModel& arm() const { return arm_; }
   const ds::HittingModel& hitting() const { return hitting_; }
   const robot::IkOptions& ik() const { return ik_; }
   double ball_radius() const { return ball_radius_; }  ///< [m]
-  /// Simulator bookkeeping (physics_step, the putt harness, tests' contact cross-check); -1
-  /// without a simulator. The module's update never reads them.
-  int club_geom() const { return club_geom_; }
-  int ball_geom() const { return ball_geom_; }
-  int ball_dof() const { return ball_dof_; }
   /// [m/s] club speed cap of this mode (speed_max, or kSafeEndpointSpeed in normal mode).
   double speed_cap() const { return speed_cap_; }
   /// [m/s] the most the DS velocity may ask of the club at any angle (arm_speed_cap, and the
@@ -104,9 +94,6 @@ class ModuleModel {
   robot::IkOptions ik_;
   robot::Vector7 posture_;
   double ball_radius_ = 0.0;
-  int club_geom_ = -1;
-  int ball_geom_ = -1;
-  int ball_dof_ = -1;
   double speed_cap_ = 3.0;
   double dynamic_cap_ = 3.0;
   double rest_speed_ = 0.25;
@@ -150,15 +137,16 @@ class ModuleData {
   bool compute_fault = false;       ///< IK/RNEA failed last tick: reported as a fault this tick
   /// Set by a real-time scheduler after an overrun streak; a fault until the module is reset.
   bool overrun_fault = false;
+  /// Set by the core loop when a hook threw (control/core_loop.hpp); a fault until reset.
+  bool hook_fault = false;
   perception::Perceived seen;   ///< last perception handed to the robot update
   std::int64_t seen_tick = -1;  ///< core tick of the last fresh perception (-1: never)
   TickInfo last;
 };
 
-/// Resets the data to Idle with the reference at the measured joint positions `q` [rad].
+/// Resets the data to Idle with the reference at the measured joint positions `q` [rad] (in a
+/// simulation: control::module_reset of control/mujoco_arm.hpp).
 void module_reset(const ModuleModel& model, ModuleData& data, const robot::Vector7& q);
-/// The same with the arm's joint positions in a simulation.
-void module_reset(const ModuleModel& model, ModuleData& data, const mjData* d);
 
 /// User update (not real-time): ask for the rest pose for hitting angle `angle` [rad].
 /// Returns false (and changes nothing) if the angle is outside the envelope or not finite.

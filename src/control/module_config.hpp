@@ -106,6 +106,8 @@ struct ModuleConfig {
   void validate() const;
   /// [s] core period.
   double core_period() const { return 1.0 / core_rate; }
+  /// Every field equal (what a cache of results keys on).
+  bool operator==(const ModuleConfig&) const = default;
 };
 
 /// Reads a YAML file; missing keys keep their defaults, unknown keys are an error. Gains may be a

@@ -39,6 +39,9 @@ class Recorder {
   /// samples are kept, so `stop` can be retried).
   std::size_t stop();
 
+  /// Counts `n` samples lost before they reached the recorder (a full ring) as dropped.
+  void count_dropped(std::size_t n) noexcept { dropped_ += active_ ? n : 0; }
+
   bool active() const { return active_; }
   const std::filesystem::path& path() const { return path_; }
   std::size_t rows() const { return rows_.size(); }

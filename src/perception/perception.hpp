@@ -4,13 +4,13 @@
 ///
 /// Both sources answer `perceive(now)` the same way, never throw, and say whether the answer is
 /// fresh enough to act on; the control module decides what to do with a stale answer (hold,
-/// never hit).
+/// never hit). No simulator here: the simulator's ground truth is
+/// perception/simulator_perception.hpp.
 #include <array>
 #include <limits>
 
 #include "perception/vision_feed.hpp"
 #include "robot/wam_model.hpp"
-#include "sim/world.hpp"
 
 namespace mg::perception {
 
@@ -28,18 +28,6 @@ class Perception {
   virtual ~Perception() = default;
   /// The current ball and hole at `now` [s, caller's monotonic clock]. Never throws.
   virtual Perceived perceive(double now) noexcept = 0;
-};
-
-/// Ground truth from a running simulation: always fresh, age 0. Holds references: `world` and
-/// `data` must outlive it. Real-time safe (no allocation).
-class SimulatorPerception final : public Perception {
- public:
-  SimulatorPerception(const sim::World& world, const mjData* data) : world_(&world), data_(data) {}
-  Perceived perceive(double now) noexcept override;
-
- private:
-  const sim::World* world_;
-  const mjData* data_;
 };
 
 /// A source as a plant's vision really is (plant/plant.hpp): what `source` perceived `latency`

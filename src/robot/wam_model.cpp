@@ -201,20 +201,4 @@ std::string wam_standalone_mjcf(const WamMount& mount) {
                      wam_bodies_mjcf(mount), wam_actuators_mjcf());
 }
 
-sim::ModelPtr compile_mjcf(const std::string& xml) {
-  auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  const char* kName = "wam.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), kName, static_cast<int>(xml.size())) != 0) {
-    mj_deleteVFS(vfs.get());
-    throw Error("MuJoCo: cannot create the in-memory model file");
-  }
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), kName)], xml.data(), xml.size());
-  char error[1024] = "";
-  sim::ModelPtr model(mj_loadXML(kName, vfs.get(), error, sizeof error));
-  mj_deleteVFS(vfs.get());
-  if (!model) throw Error(fmt::format("MuJoCo rejected the WAM model: {}", error));
-  return model;
-}
-
 }  // namespace mg::robot

@@ -14,7 +14,6 @@
 #include <string>
 
 #include "robot/wam_params.hpp"
-#include "sim/mujoco_handles.hpp"
 
 namespace mg::robot {
 
@@ -76,8 +75,5 @@ std::string wam_actuators_mjcf();
 
 /// A complete model: the arm alone (no ground), gravity on, 1 ms Euler steps.
 std::string wam_standalone_mjcf(const WamMount& mount);
-
-/// Compiles MJCF text in memory; throws mg::Error with MuJoCo's message on failure.
-sim::ModelPtr compile_mjcf(const std::string& xml);
 
 }  // namespace mg::robot

@@ -55,6 +55,17 @@ OutcomeTracker::OutcomeTracker(const World& world, std::array<double, 2> hole,
   update(time, position, velocity);
 }
 
+void OutcomeTracker::restart(const mjData* d) {
+  still_since_ = -1.0;
+  inside_since_ = -1.0;
+  heading_x_ = 1.0;
+  heading_y_ = 0.0;
+  reached_rim_ = false;
+  outcome_ = PuttOutcome{};
+  outcome_.closest_approach = 1e9;
+  update(d);
+}
+
 double OutcomeTracker::lowest_z() {
   if (std::isnan(lowest_z_)) {
     const auto& b = world_->field().bounds;

@@ -99,6 +99,13 @@ class OutcomeTracker {
   /// `time` [s], centre `position` [m] and `velocity` [m/s] (3 each, world frame).
   OutcomeTracker(const World& world, std::array<double, 2> hole, const OutcomeRules& rules,
                  double time, const double* position, const double* velocity);
+  /// Starts over from the ball's state in `d` (same hole and rules): the tracker is then the one
+  /// the first constructor would make from `d`, without any field evaluation (for a real-time
+  /// thread: copy a tracker made earlier for this hole, `prepare` it, `restart` it at the hit).
+  void restart(const mjData* d);
+  /// Evaluates now what a tracker may need of the field later (the lowest ground), so `update`
+  /// and `restart` never evaluate the field.
+  void prepare() { (void)lowest_z(); }
   /// Call after every physics step; returns true once the outcome is decided.
   bool update(const mjData* d);
   /// The same from the ball's state (world frame, as above).

@@ -1,22 +1,30 @@
 #pragma once
-/// A running minigolf system behind `minigolf console`: the field's world with the WAM, the
-/// module, its perception (simulator truth, or the network vision feed in normal mode), a
-/// parameter model for `auto`, a recorder, and one of two schedulers:
+/// A running minigolf system behind `minigolf console` and `minigolf view`: the field's world
+/// with the WAM, the module, its perception (simulator truth, or the network vision feed in normal
+/// mode), a parameter model for `auto`, a recorder, on the one core loop (control/core_loop.hpp)
+/// under one of two schedulers:
 ///
 ///   lockstep (default)  one thread; `wait S` runs S simulated seconds as fast as possible.
-///                       Deterministic: the same script gives the same bits.
-///   realtime            three threads: the core update + physics at 500 Hz paced by the wall
-///                       clock (highest priority), the robot update (perception, DS, recorder,
-///                       printing) every robot_update_divider-th period, and the user update
-///                       (the console, the calling thread). One mutex guards the module and world;
-///                       the robot and user updates hold it for microseconds.
+///                       Deterministic: the same script gives the same bits, and the same bits
+///                       as a putt asked for at the same tick (tests/system/test_session.cpp).
+///   realtime            the core thread (SCHED_FIFO 80 when allowed) runs the core loop at
+///                       500 Hz on the wall clock: commands, read -> robot update (every 5th
+///                       tick) -> module update -> write -> physics. It shares no lock with the
+///                       rest: commands reach it through a single-producer single-consumer queue,
+///                       its state leaves through a published snapshot, its events and record
+///                       samples through lock-free rings (system/session_core.hpp). An I/O thread
+///                       (SCHED_FIFO 60) polls the vision feed, runs the vision simulator, drains
+///                       the recorder and prints; the user thread (the caller) parses and answers.
 ///
-/// The module functions (control_tick, robot_update, request_*) are the same in both; only the
-/// scheduler differs. Commands are answered on the output stream; state changes, refusals and
-/// ball outcomes are printed as they happen. Bad input never throws out of `execute`.
+/// The module functions are the same in both; only the scheduler differs. Commands are answered
+/// on the output stream; state changes, refusals and ball outcomes are printed as they happen. In
+/// real-time mode the core answers a command at its next tick: the answer is printed by the I/O
+/// thread or at the user's next `status`, `wait`, `quit` (with `echo`, before the next command).
+/// Bad input never throws out of `execute`.
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <deque>
 #include <iosfwd>
 #include <memory>
 #include <mutex>
@@ -24,9 +32,10 @@
 #include <string>
 #include <string_view>
 #include <thread>
+#include <vector>
 
 #include "control/console_command.hpp"
-#include "control/full_system.hpp"
+#include "control/core_loop.hpp"
 #include "control/minigolf_module.hpp"
 #include "control/module_config.hpp"
 #include "control/recorder.hpp"
@@ -44,12 +53,23 @@ using control::CoreTiming;
 using control::ModuleConfig;
 using control::ModuleState;
 
-/// What an observer of a session sees: everything under the session mutex, read only.
+/// The module's state as an observer of a session sees it (a copy: what the core published).
+struct ModuleStatus {
+  ModuleState state = ModuleState::kIdle;
+  bool ball_hit = false;  ///< the module saw the ball hit (latched during a hit)
+  bool at_rest_pose = false;
+  bool fault = false;     ///< an overrun streak or a hook's exception: cleared by `idle`
+  std::int64_t tick = 0;  ///< core ticks since the module's reset
+};
+
+/// What an observer of a session sees, read only. `d` is the simulation itself (observers, and
+/// `inspect` in lockstep mode) or, in real-time mode's `inspect`, a copy of its pose (qpos, mocap,
+/// userdata) as the core last published it.
 struct SessionView {
   const sim::World& world;
   const mjData* d;
   const control::ModuleModel& model;
-  const control::ModuleData& module;
+  ModuleStatus module;
   double angle;                          ///< [rad] the console's hitting angle
   double speed;                          ///< [m/s] the console's club speed
   bool hit_armed;                        ///< `hit` waits for the rest pose
@@ -57,10 +77,12 @@ struct SessionView {
   const sim::PuttOutcome* last_outcome;  ///< the latest decided hit (nullptr: none yet)
 };
 
-/// Called by the session after every physics step, under the session mutex, on the thread that
-/// steps (lockstep: the caller of execute; realtime: the core thread). It must not keep the view
-/// past the call and, in realtime mode, must take microseconds (it delays the next tick). What it
-/// does cannot change the simulation: it sees const state only.
+/// Called by the session after every physics step, on the thread that steps (lockstep: the caller
+/// of execute; realtime: the core thread). It must not keep the view past the call and, in
+/// realtime mode, must take microseconds and must not allocate, lock or do I/O (it runs inside
+/// the 2 ms tick). What it does cannot change the simulation: it sees const state only. An
+/// exception is caught by the core loop: the module faults (a moving arm brakes) and the session
+/// prints it.
 class SessionObserver {
  public:
   virtual ~SessionObserver() = default;
@@ -82,21 +104,8 @@ struct SessionOptions {
   plant::Plant plant;
 };
 
-/// Core-update wall time over a whole session in 1 us bins (no allocation, any length).
-class TimingHistogram {
- public:
-  static constexpr int kBins = 4000;  ///< 0..4 ms; longer times go to the last bin
-  void add(double us) noexcept;
-  CoreTiming summary(double budget_us) const;
-
- private:
-  std::array<std::uint32_t, kBins> bins_{};
-  std::uint64_t count_ = 0;
-  std::uint64_t over_budget_ = 0;
-  double budget_us_seen_ = 0.0;
-  double sum_us_ = 0.0;
-  double max_us_ = 0.0;
-};
+class SessionCore;  // system/session_core.hpp
+struct CoreCommand;
 
 class Session {
  public:
@@ -122,17 +131,19 @@ class Session {
   CoreTiming timing() const;
   /// Ticks whose work ended after the next tick was due (realtime mode; 0 in lockstep).
   std::uint64_t deadline_misses() const { return deadline_misses_.load(); }
-  std::uint64_t core_ticks() const { return core_ticks_.load(); }
+  std::uint64_t core_ticks() const;
   std::uint16_t vision_port() const;
   perception::VisionCounters vision_counters() const;
   std::array<double, 2> ball_position() const;
   std::string scheduling() const;  ///< the scheduler and the thread priorities it got
-  /// Calls `visit` with the session's state under the session mutex (any thread; keep it short:
-  /// the scheduler waits meanwhile).
+  /// Calls `visit` with the session's state (any thread). Lockstep: the live state, under the
+  /// session's lock (keep it short: the scheduler waits meanwhile). Realtime: the state the core
+  /// last published (the core never waits for it).
   template <class Visit>
   void inspect(Visit&& visit) const {
-    std::lock_guard lock(mutex_);
-    visit(view_locked());
+    auto* target = std::addressof(visit);
+    visit_view([](void* v, const SessionView& view) { (*static_cast<decltype(target)>(v))(view); },
+               const_cast<void*>(static_cast<const void*>(target)));
   }
   /// Makes a running `wait` return at its next tick and `run` stop before its next line (any
   /// thread; for a viewer whose window was closed).
@@ -140,64 +151,77 @@ class Session {
   bool interrupted() const { return interrupted_.load(); }
 
  private:
-  struct Event;
-  void tick_locked(bool lockstep);
-  void robot_tick_locked();
-  void push_event_locked(const Event& e);
+  void visit_view(void (*visit)(void*, const SessionView&), void* context) const;
+  bool realtime() const { return options_.realtime; }
+  /// The core applies `command` (lockstep: now; realtime: at its next tick, in order).
+  void send(const CoreCommand& command);
+  /// Realtime: waits until the core has applied every command sent; then prints the events.
+  void sync();
+  /// Prints the core's events and replies (any non-real-time thread).
   void print_events();
+  /// Moves the core's record samples into the recorder (any non-real-time thread).
+  void drain_samples();
   void run_for(double seconds);
-  void core_loop();
-  void robot_loop();
+  void core_thread();
+  void io_thread();
   void stop_threads();
   void finish_recording();  ///< writes an active recording and says so
   void say(std::string_view text);
   void do_command(const control::ConsoleCommand& command);
+  void do_status();
+  void do_auto();
+  void do_load_hitting(const std::string& path);
+  void do_record(const control::RecordCmd& command);
   void load_params(const std::string& path);
-  std::string scheduling_locked() const;
-  SessionView view_locked() const;
+  /// A tracker prepared for the ball after a hit into the hole at `hole` (kept for the session).
+  const sim::OutcomeTracker* tracker_for(std::array<double, 2> hole);
+  /// Calls `read` with the latest snapshot (under snapshot_mutex_).
+  template <class Read>
+  auto read_snapshot(Read&& read) const;
 
   ModuleConfig config_;
   SessionOptions options_;
   std::ostream& out_;
   std::unique_ptr<System> system_;  ///< field worlds, arm, hitting model: built once
   const sim::World& world_;
-  sim::DataPtr d_;
-  std::unique_ptr<control::ModuleModel>
-      model_;  ///< a copy of the system's (`load hitting` replaces it)
-  std::unique_ptr<control::ModuleData> md_;
-  perception::SimulatorPerception truth_;
+  /// Every module model and data the session made (`load hitting` adds one; kept to the end, so
+  /// a snapshot's model stays valid).
+  std::vector<std::unique_ptr<control::ModuleModel>> models_;
+  std::vector<std::unique_ptr<control::ModuleData>> datas_;
+  const control::ModuleModel* model_ = nullptr;  ///< the core's model, as the user side knows it
+  std::deque<sim::OutcomeTracker> trackers_;     ///< one per hole the session had
+  sim::DataPtr scratch_;  ///< the user side's: checks a hole before the core sets it
+  std::unique_ptr<SessionCore> core_;
+  std::uint64_t sent_ = 0;  ///< seq of the last command sent
+
+  // Perception and the vision simulator (normal mode).
   std::unique_ptr<perception::VisionFeed> feed_;
   std::unique_ptr<perception::NetworkPerception> network_;
   std::unique_ptr<perception::VisionPublisher> publisher_;
-  perception::Perception* perception_ = nullptr;
+  std::unique_ptr<perception::SimulatorPerception> truth_;   ///< lockstep: the vision simulator's
+  std::unique_ptr<perception::Perception> lockstep_vision_;  ///< lockstep: publish, then poll
+  std::unique_ptr<perception::Perception> buffered_vision_;  ///< realtime: the I/O thread's answer
+
+  // The user side.
   std::optional<learning::Model> params_;
   std::string params_path_;
-  control::Recorder recorder_;
-  double angle_ = 0.0;  ///< [rad] the console's current hitting angle
-  double speed_ = 1.0;  ///< [m/s] the console's current club speed
-  bool hit_when_at_rest_ = false;
-  std::optional<sim::OutcomeTracker> tracker_;    ///< the ball after a hit, until decided
-  double hit_time_ = 0.0;                         ///< [s] simulated time of that hit
-  std::optional<sim::PuttOutcome> last_outcome_;  ///< the latest decided hit
-  int steps_per_tick_ = 2;
-  TimingHistogram timing_;
+  control::Recorder recorder_;  ///< under recorder_mutex_
+  std::uint64_t dropped_reported_ = 0;
 
-  static constexpr int kEventCapacity = 256;
-  std::unique_ptr<Event[]> events_;
-  int event_head_ = 0;
-  int event_count_ = 0;
-  std::uint64_t events_lost_ = 0;
-
-  mutable std::mutex mutex_;  ///< world, module, perception, recorder, events
-  std::mutex out_mutex_;
+  mutable std::mutex mutex_;           ///< lockstep: the core side (the caller's ticks, inspect)
+  mutable std::mutex snapshot_mutex_;  ///< the snapshot's readers (never the core)
+  mutable std::mutex printer_mutex_;   ///< the event ring's consumers and the output
+  mutable std::mutex recorder_mutex_;  ///< the recorder and the sample ring's consumers
+  mutable std::mutex io_mutex_;        ///< the vision feed (realtime: the I/O thread polls it)
+  sim::DataPtr display_;               ///< realtime `inspect`: the published pose
   std::atomic<bool> stop_{false};
+  std::atomic<bool> threads_running_{false};
   std::atomic<bool> interrupted_{false};
   std::atomic<std::uint64_t> deadline_misses_{0};
-  std::atomic<std::uint64_t> core_ticks_{0};
+  std::atomic<int> core_priority_{-2};  ///< SCHED_FIFO priority the thread got (-1: none)
+  std::atomic<int> io_priority_{-2};
   std::thread core_thread_;
-  std::thread robot_thread_;
-  std::string core_priority_;   ///< realtime: what the core thread got (guarded by mutex_)
-  std::string robot_priority_;  ///< realtime: what the robot thread got (guarded by mutex_)
+  std::thread io_thread_;
 };
 
 }  // namespace mg::system

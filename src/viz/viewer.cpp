@@ -13,6 +13,7 @@
 #include <iostream>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -27,8 +28,10 @@ namespace {
 
 using control::ModuleState;
 
-/// The ball's path since the latest hit, kept after every physics step (under the session mutex,
-/// on the stepping thread: a preallocated array, no allocation).
+/// The ball's path since the latest hit, kept after every physics step on the stepping thread
+/// (the core thread in real-time mode: a preallocated array, no allocation, no lock) and read by
+/// the drawing thread. Each point is published by the count (release/acquire); a point rewritten
+/// after a new hit while being drawn only bends that frame's path.
 class PathObserver final : public system::SessionObserver {
  public:
   static constexpr int kCapacity = 6000;  ///< 60 s at 10 ms
@@ -36,22 +39,34 @@ class PathObserver final : public system::SessionObserver {
   void after_step(const system::SessionView& v) override {
     const double t = v.d->time;
     const ModuleState state = v.module.state;
-    if (state == ModuleState::kHitting && previous_ != ModuleState::kHitting) count = 0;
+    if (state == ModuleState::kHitting && previous_ != ModuleState::kHitting)
+      count_.store(0, std::memory_order_release);
     previous_ = state;
-    if ((v.module.ball_hit || v.ball_rolling) && t >= next_ && count < kCapacity) {
+    const int n = count_.load(std::memory_order_relaxed);
+    if ((v.module.ball_hit || v.ball_rolling) && t >= next_ && n < kCapacity) {
       const mjtNum* b = v.d->qpos + v.world.ids().ball_qpos;
-      path[static_cast<std::size_t>(count++)] = {b[0], b[1], b[2]};
+      for (int k = 0; k < 3; ++k)
+        path_[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)].store(
+            b[k], std::memory_order_relaxed);
+      count_.store(n + 1, std::memory_order_release);
       next_ = t + 0.01;
     }
     if (!v.ball_rolling && !v.module.ball_hit) next_ = 0.0;
   }
 
-  std::array<std::array<double, 3>, kCapacity> path{};
-  int count = 0;
+  /// The path so far (any thread).
+  void copy_to(std::vector<std::array<double, 3>>& out) const {
+    const int n = count_.load(std::memory_order_acquire);
+    out.resize(static_cast<std::size_t>(n));
+    for (std::size_t i = 0; i < out.size(); ++i)
+      for (std::size_t k = 0; k < 3; ++k) out[i][k] = path_[i][k].load(std::memory_order_relaxed);
+  }
 
  private:
-  ModuleState previous_ = ModuleState::kIdle;
-  double next_ = 0.0;
+  std::array<std::array<std::atomic<double>, 3>, kCapacity> path_{};
+  std::atomic<int> count_{0};
+  ModuleState previous_ = ModuleState::kIdle;  ///< the stepping thread's
+  double next_ = 0.0;                          ///< the stepping thread's
 };
 
 struct Mouse {
@@ -207,7 +222,7 @@ void run_viewer(const control::ModuleConfig& config, const ViewerOptions& option
       copy_pose(world->model(), v.d, renderer.data());
       deco.overlay = overlay_text(v);
       deco.aim_angle = v.angle;
-      deco.path.assign(observer.path.begin(), observer.path.begin() + observer.count);
+      observer.copy_to(deco.path);
     });
     int w = 0, h = 0;
     glfwGetFramebufferSize(window.handle(), &w, &h);

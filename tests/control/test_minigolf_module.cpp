@@ -11,7 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "control/full_system.hpp"
+#include "control/mujoco_arm.hpp"
 #include "field/field.hpp"
+#include "perception/simulator_perception.hpp"
 
 // Counts heap allocations so the real-time claim of the core tick is tested, not assumed.
 // GCC cannot see that these replacements pair malloc with free.
@@ -41,6 +43,7 @@ struct Bench {
                                       ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) +
                                                              "/data/models/hitting-default.json"),
                                       ModuleConfig{})};
+  SimIds ids{find_sim_ids(world)};
   sim::DataPtr data{world.make_data()};
   ModuleData md{model};
   perception::SimulatorPerception truth{world, data.get()};
@@ -50,13 +53,13 @@ struct Bench {
     world.reset(d);
     robot::Vector7 q;
     for (int j = 0; j < 7; ++j) q[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
-    robot::set_joint_positions(model.arm(), d, q);
+    robot::set_joint_positions(ids.arm, d, q);
     mj_forward(world.model(), d);
-    module_reset(model, md, d);
+    module_reset(model, md, ids.arm, d);
   }
   /// The core tick on the simulated arm: read -> update -> write.
   ModuleCommand core_tick() {
-    MujocoArm arm(model.arm(), data.get());
+    MujocoArm arm(ids.arm, data.get());
     return control_tick(model, md, arm);
   }
   /// One core tick (with the robot update when due) and two physics steps; returns the
@@ -110,12 +113,12 @@ TEST(MinigolfModule, WholeHitCycleWithoutAllocation) {
 TEST(MinigolfModule, NanMeasurementDuringHitBrakesWithFiniteTorques) {
   Bench b;
   ASSERT_TRUE(b.start_hit());
-  b.data->qvel[b.model.arm().dof_address(3)] = std::numeric_limits<double>::quiet_NaN();
+  b.data->qvel[b.ids.arm.dof[3]] = std::numeric_limits<double>::quiet_NaN();
   b.core_tick();
   EXPECT_EQ(b.md.state, ModuleState::kBraking);
   EXPECT_EQ(b.md.last.reason, Reason::kFault);
   for (int j = 0; j < 7; ++j) {
-    const double u = b.data->ctrl[b.model.arm().actuator_id(j)];
+    const double u = b.data->ctrl[b.ids.arm.actuator[static_cast<std::size_t>(j)]];
     EXPECT_TRUE(std::isfinite(u)) << j;
     EXPECT_LE(std::abs(u), b.model.arm().torque_limit()[j]) << j;
   }
@@ -138,7 +141,7 @@ TEST(MinigolfModule, NormalModeRefusesClubSpeedsAboveTheSafetyRule) {
   normal.mode = ModuleMode::kNormal;
   const ModuleModel model = make_module_model(b.world, b.model.hitting(), normal);
   ModuleData md(model);
-  module_reset(model, md, b.data.get());
+  module_reset(model, md, b.ids.arm, b.data.get());
   ASSERT_TRUE(request_rest(model, md, 0.0));
   EXPECT_FALSE(request_hit(model, md, 0.0, robot::kSafeEndpointSpeed + 0.1));
   EXPECT_TRUE(request_hit(model, md, 0.0, robot::kSafeEndpointSpeed));
@@ -192,12 +195,12 @@ TEST(MinigolfModule, IdleHoldsTheArmWhereItIsLeft) {
   Bench b;
   robot::Vector7 q;
   q << 0.3, -0.4, 0.2, 1.2, -0.3, 0.4, 0.1;
-  robot::set_joint_positions(b.model.arm(), b.data.get(), q);
+  robot::set_joint_positions(b.ids.arm, b.data.get(), q);
   mj_forward(b.world.model(), b.data.get());
-  module_reset(b.model, b.md, b.data.get());
+  module_reset(b.model, b.md, b.ids.arm, b.data.get());
   for (int i = 0; i < 500; ++i) b.tick();  // 1 s
   EXPECT_EQ(b.md.state, ModuleState::kIdle);
-  const robot::Vector7 after = robot::joint_positions(b.model.arm(), b.data.get());
+  const robot::Vector7 after = robot::joint_positions(b.ids.arm, b.data.get());
   EXPECT_LT((after - q).cwiseAbs().maxCoeff(), 1e-3) << (after - q).transpose();
 }
 

@@ -4,6 +4,7 @@
 
 #include "field/field.hpp"
 #include "perception/perception.hpp"
+#include "perception/simulator_perception.hpp"
 #include "sim/world.hpp"
 
 namespace mg::perception {

@@ -1,12 +1,13 @@
 #pragma once
-// Shared fixture: the standalone WAM model compiled once per test, its ArmModel and random joint
-// configurations inside the limits.
+// Shared fixture: the standalone WAM model compiled once per test, its ArmModel, its MuJoCo ids
+// and random joint configurations inside the limits.
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "core/rng.hpp"
 #include "robot/arm_model.hpp"
+#include "robot/arm_mujoco.hpp"
 #include "robot/wam_model.hpp"
 
 namespace mg::robot::testing {
@@ -21,7 +22,8 @@ class WamFixture : public ::testing::Test {
   void SetUp() override {
     model_ = compile_mjcf(wam_standalone_mjcf(mount_));
     data_.reset(mj_makeData(model_.get()));
-    arm_ = std::make_unique<ArmModel>(model_.get(), mount_);
+    arm_ = std::make_unique<ArmModel>(arm_model_from_mujoco(model_.get(), mount_));
+    ids_ = find_arm_ids(model_.get());
   }
   void TearDown() override { expect_no_warnings(data_.get()); }
 
@@ -43,7 +45,7 @@ class WamFixture : public ::testing::Test {
   }
   // Sets q, runs kinematics and the COM positions (what mj_jacSite needs).
   void pose_model(const Vector7& q) {
-    set_joint_positions(*arm_, data_.get(), q);
+    set_joint_positions(ids_, data_.get(), q);
     mj_kinematics(model_.get(), data_.get());
     mj_comPos(model_.get(), data_.get());
   }
@@ -52,6 +54,7 @@ class WamFixture : public ::testing::Test {
   sim::ModelPtr model_;
   sim::DataPtr data_;
   std::unique_ptr<ArmModel> arm_;
+  ArmIds ids_;  ///< the arm in model_
 };
 
 inline Vector7 rest_posture() { return Vector7(kDefaultRestPosture.data()); }

@@ -28,16 +28,16 @@ TEST_F(WamDynamics, RneaEqualsMujocoInverseDynamics) {
   double worst_rel = 0.0;
   for (int trial = 0; trial < 300; ++trial) {
     const Vector7 q = random_q(rng), qd = random_vector(rng, 2.0), qdd = random_vector(rng, 10.0);
-    set_joint_positions(*arm_, data_.get(), q);
+    set_joint_positions(ids_, data_.get(), q);
     for (int i = 0; i < kNumJoints; ++i) {
-      data_->qvel[arm_->dof_address(i)] = qd(i);
-      data_->qacc[arm_->dof_address(i)] = qdd(i);
+      data_->qvel[ids_.dof[static_cast<std::size_t>(i)]] = qd(i);
+      data_->qacc[ids_.dof[static_cast<std::size_t>(i)]] = qdd(i);
     }
     mj_inverse(model_.get(), data_.get());
     Vector7 tau;
     ASSERT_EQ(inverse_dynamics(*arm_, q, qd, qdd, tau), RtStatus::kOk);
     for (int i = 0; i < kNumJoints; ++i) {
-      const double mj = data_->qfrc_inverse[arm_->dof_address(i)];
+      const double mj = data_->qfrc_inverse[ids_.dof[static_cast<std::size_t>(i)]];
       const double rel = std::abs(tau(i) - mj) / std::max(1.0, std::abs(mj));
       worst_rel = std::max(worst_rel, rel);
     }
@@ -50,12 +50,12 @@ TEST_F(WamDynamics, GravityTorqueEqualsMujocoBiasAtRest) {
   Rng rng(22);
   for (int trial = 0; trial < 50; ++trial) {
     const Vector7 q = random_q(rng);
-    set_joint_positions(*arm_, data_.get(), q);
+    set_joint_positions(ids_, data_.get(), q);
     mj_forward(model_.get(), data_.get());
     Vector7 g;
     ASSERT_EQ(gravity_torque(*arm_, q, g), RtStatus::kOk);
     for (int i = 0; i < kNumJoints; ++i)
-      EXPECT_NEAR(g(i), data_->qfrc_bias[arm_->dof_address(i)], 1e-9);
+      EXPECT_NEAR(g(i), data_->qfrc_bias[ids_.dof[static_cast<std::size_t>(i)]], 1e-9);
   }
 }
 
@@ -74,15 +74,16 @@ TEST_F(WamDynamics, MassMatrixIsSymmetricPositiveDefiniteAndEqualsMujoco) {
     ASSERT_EQ(mass_matrix(*arm_, q, rigid, false), RtStatus::kOk);
     EXPECT_GT(Eigen::SelfAdjointEigenSolver<Matrix7>(rigid).eigenvalues().minCoeff(), 0.0);
 
-    set_joint_positions(*arm_, data_.get(), q);
+    set_joint_positions(ids_, data_.get(), q);
     mj_forward(model_.get(), data_.get());
     mj_fullM(model_.get(), full.data(), data_->qM);
     for (int r = 0; r < kNumJoints; ++r)
       for (int c = 0; c < kNumJoints; ++c)
-        EXPECT_NEAR(mass(r, c),
-                    full[static_cast<std::size_t>(arm_->dof_address(r) * model_->nv +
-                                                  arm_->dof_address(c))],
-                    1e-10);
+        EXPECT_NEAR(
+            mass(r, c),
+            full[static_cast<std::size_t>(ids_.dof[static_cast<std::size_t>(r)] * model_->nv +
+                                          ids_.dof[static_cast<std::size_t>(c)])],
+            1e-10);
   }
 }
 
@@ -114,9 +115,10 @@ TEST(WamSimulation, ComputedTorqueHoldsAndMovesTheArm) {
   const WamMount mount;
   sim::ModelPtr m = compile_mjcf(wam_standalone_mjcf(mount));
   sim::DataPtr d(mj_makeData(m.get()));
-  const ArmModel arm(m.get(), mount);
+  const ArmModel arm = arm_model_from_mujoco(m.get(), mount);
+  const ArmIds ids = find_arm_ids(m.get());
   const Vector7 rest = testing::rest_posture();
-  set_joint_positions(arm, d.get(), rest);
+  set_joint_positions(ids, d.get(), rest);
   const double kp = 400.0, kd = 40.0;  // [1/s^2], [1/s]
   double worst = 0.0, peak_ratio = 0.0;
   for (int step = 0; step < 2000; ++step) {
@@ -132,16 +134,16 @@ TEST(WamSimulation, ComputedTorqueHoldsAndMovesTheArm) {
         qdd_ref(j) = 0.1 * w * w * std::cos(s);
       }
     }
-    const Vector7 q = joint_positions(arm, d.get()), qd = joint_velocities(arm, d.get());
+    const Vector7 q = joint_positions(ids, d.get()), qd = joint_velocities(ids, d.get());
     const Vector7 acc = qdd_ref + kp * (q_ref - q) + kd * (qd_ref - qd);
     Vector7 tau;
     ASSERT_EQ(inverse_dynamics(arm, q, qd, acc, tau), RtStatus::kOk);
     for (int i = 0; i < kNumJoints; ++i) {
-      d->ctrl[arm.actuator_id(i)] = tau(i);
+      d->ctrl[ids.actuator[static_cast<std::size_t>(i)]] = tau(i);
       peak_ratio = std::max(peak_ratio, std::abs(tau(i)) / arm.torque_limit()(i));
     }
     mj_step(m.get(), d.get());
-    worst = std::max(worst, (joint_positions(arm, d.get()) - q_ref).cwiseAbs().maxCoeff());
+    worst = std::max(worst, (joint_positions(ids, d.get()) - q_ref).cwiseAbs().maxCoeff());
   }
   EXPECT_LT(worst, 2e-3);
   EXPECT_LT(peak_ratio, 1.0);

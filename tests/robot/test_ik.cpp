@@ -29,7 +29,7 @@ class WamIk : public WamFixture {
  protected:
   FaceCheck check_with_mujoco(const Vector7& q, const FaceTarget& t) {
     pose_model(q);
-    const Eigen::Isometry3d face = club_pose(*arm_, data_.get());
+    const Eigen::Isometry3d face = club_pose(ids_, data_.get());
     const Eigen::Vector3d normal = face.linear().col(0);
     const Eigen::Vector3d wanted(std::cos(t.heading), std::sin(t.heading), 0.0);
     return {(face.translation() - t.position).norm(),

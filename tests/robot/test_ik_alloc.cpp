@@ -51,11 +51,11 @@ TEST_F(WamFixture, RealTimeFunctionsDoNotAllocate) {
     (void)inverse_dynamics(*arm_, q, qd, Vector7::Ones(), tau);
     (void)gravity_torque(*arm_, q, tau);
     (void)mass_matrix(*arm_, q, mass);
-    set_joint_positions(*arm_, data_.get(), q);
+    set_joint_positions(ids_, data_.get(), q);
     mj_kinematics(model_.get(), data_.get());
     mj_comPos(model_.get(), data_.get());
-    club_jacobian(*arm_, model_.get(), data_.get(), jac);
-    (void)club_pose(*arm_, data_.get());
+    club_jacobian(ids_, model_.get(), data_.get(), jac);
+    (void)club_pose(ids_, data_.get());
     q += options.dt * qd;
   }
   g_counting = false;

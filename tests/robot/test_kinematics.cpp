@@ -49,9 +49,8 @@ TEST_F(WamFixture, MujocoLinkFramesEqualDhForwardKinematics) {
       worst = std::max(
           worst, max_abs_diff(mj, arm_->shoulder_in_world() * frames[static_cast<std::size_t>(i)]));
     }
-    worst = std::max(worst, max_abs_diff(club_pose(*arm_, data_.get()), dh_club_pose(*arm_, q)));
-    worst =
-        std::max(worst, max_abs_diff(flange_pose(*arm_, data_.get()), dh_flange_pose(*arm_, q)));
+    worst = std::max(worst, max_abs_diff(club_pose(ids_, data_.get()), dh_club_pose(*arm_, q)));
+    worst = std::max(worst, max_abs_diff(flange_pose(ids_, data_.get()), dh_flange_pose(*arm_, q)));
   }
   EXPECT_LT(worst, 1e-9);
   RecordProperty("max_fk_difference", fmt::format("{:.3g}", worst));
@@ -64,16 +63,16 @@ TEST_F(WamFixture, JacobianMatchesFiniteDifferencesAndDhJacobian) {
     const Vector7 q = random_q(rng, 1e-3);
     pose_model(q);
     Matrix67 jac;
-    club_jacobian(*arm_, model_.get(), data_.get(), jac);
+    club_jacobian(ids_, model_.get(), data_.get(), jac);
     Matrix67 fd;
     for (int i = 0; i < kNumJoints; ++i) {
       Vector7 qp = q, qm = q;
       qp(i) += h;
       qm(i) -= h;
       pose_model(qp);
-      const Eigen::Isometry3d a = club_pose(*arm_, data_.get());
+      const Eigen::Isometry3d a = club_pose(ids_, data_.get());
       pose_model(qm);
-      const Eigen::Isometry3d b = club_pose(*arm_, data_.get());
+      const Eigen::Isometry3d b = club_pose(ids_, data_.get());
       fd.block<3, 1>(0, i) = (a.translation() - b.translation()) / (2 * h);
       fd.block<3, 1>(3, i) = rotation_to_vector(a.linear() * b.linear().transpose()) / (2 * h);
     }

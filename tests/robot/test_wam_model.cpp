@@ -33,7 +33,8 @@ TEST_F(WamFixture, CompilesWithSevenJointsAndActuators) {
   EXPECT_EQ(model_->nq, kNumJoints);
   EXPECT_EQ(model_->nv, kNumJoints);
   EXPECT_EQ(model_->nu, kNumJoints);
-  EXPECT_TRUE(arm_->has_mujoco());
+  EXPECT_GE(ids_.site, 0);
+  EXPECT_GE(ids_.flange_body, 0);
 }
 
 TEST_F(WamFixture, JointRangesArmatureDampingEqualTables) {
@@ -114,8 +115,7 @@ TEST(WamModel, BodiesInsertIntoAWorldAndTheHeadHitsABall) {
                   ball.x(), ball.y(), ball.z(), wam_bodies_mjcf(mount), wam_actuators_mjcf());
   sim::ModelPtr m = compile_mjcf(xml);
   sim::DataPtr d(mj_makeData(m.get()));
-  const ArmModel arm(m.get(), mount);
-  set_joint_positions(arm, d.get(), Vector7(kDefaultRestPosture.data()));
+  set_joint_positions(find_arm_ids(m.get()), d.get(), Vector7(kDefaultRestPosture.data()));
   const int ball_body = mj_name2id(m.get(), mjOBJ_BODY, "ball");
   const int ball_dof = m->jnt_dofadr[m->body_jntadr[ball_body]];
   for (int c = 0; c < 3; ++c) d->qvel[ball_dof + c] = -0.5 * face.linear()(c, 0);
@@ -171,8 +171,9 @@ TEST(WamModel, BadInputIsRejectedWithANamedError) {
   sim::ModelPtr m = compile_mjcf(wam_standalone_mjcf(WamMount{}));
   WamMount other;
   other.base_position[0] += 0.1;
-  EXPECT_THROW((void)ArmModel(m.get(), other), InputError);
-  EXPECT_THROW((void)ArmModel(nullptr, other), InputError);
+  EXPECT_THROW((void)arm_model_from_mujoco(m.get(), other), InputError);
+  EXPECT_THROW((void)arm_model_from_mujoco(nullptr, other), InputError);
+  EXPECT_THROW((void)find_arm_ids(nullptr), InputError);
 }
 
 }  // namespace

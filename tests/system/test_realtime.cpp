@@ -1,8 +1,14 @@
 // Real-time mode: three threads paced at 500 Hz by the wall clock. Run serially (ctest
 // RUN_SERIAL) so the timing is this program's, not the other tests'.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <atomic>
+#include <chrono>
+#include <filesystem>
 #include <sstream>
+#include <string>
+#include <thread>
 
 #include "system/session.hpp"
 
@@ -56,6 +62,69 @@ TEST(Realtime, NormalModeEndToEndOverLoopback) {
   EXPECT_NE(text.find("Hitting -> Braking: the ball was hit"), std::string::npos) << text;
   EXPECT_GT(session.vision_counters().accepted, 100u) << text;
   EXPECT_EQ(session.vision_counters().rejected(), 0u) << text;
+}
+
+/// On the core thread after every step: counts them (an observer must not allocate or lock).
+class StepCounter final : public SessionObserver {
+ public:
+  void after_step(const SessionView& v) override {
+    steps.fetch_add(1, std::memory_order_relaxed);
+    if (v.module.state == ModuleState::kHitting) hitting.store(true, std::memory_order_relaxed);
+  }
+  std::atomic<long> steps{0};
+  std::atomic<bool> hitting{false};
+};
+
+// The console's flood (1,000 commands a second, recordings written meanwhile) and a viewer
+// inspecting at 60 Hz share nothing with the core thread but lock-free channels: the core keeps
+// its ticks, every channel is exercised (run under ThreadSanitizer by scripts/sanitize.sh tsan).
+TEST(Realtime, AConsoleFloodAndAViewerLeaveTheCoreOnTime) {
+  std::ostringstream out;
+  StepCounter counter;
+  SessionOptions options;
+  options.realtime = true;
+  options.observer = &counter;
+  Session session(ModuleConfig{}, options, out);
+  const auto file = std::filesystem::temp_directory_path() /
+                    ("mg_realtime_flood_" + std::to_string(::getpid()) + ".csv");
+  std::atomic<bool> done{false};
+  std::atomic<long> views{0};
+  std::thread viewer([&] {
+    while (!done.load()) {
+      session.inspect([&](const SessionView& v) {
+        if (v.d->time >= 0.0 && v.world.model() != nullptr) views.fetch_add(1);
+      });
+      std::this_thread::sleep_for(std::chrono::milliseconds(16));
+    }
+  });
+  const char* cycle[] = {"status", "angle 0.1", "speed 1.2", "rest", "angle 0.05", "speed 1.0"};
+  const auto start = std::chrono::steady_clock::now();
+  auto next = start;
+  for (int k = 0; k < 2000; ++k) {
+    std::string line = cycle[k % 6];
+    if (k % 1000 == 0) line = "hit";
+    if (k == 100) line = "record on " + file.string();
+    if (k == 1900) line = "record off";
+    session.execute(line);
+    next += std::chrono::milliseconds(1);
+    std::this_thread::sleep_until(next);
+  }
+  session.execute("status");
+  done = true;
+  viewer.join();
+  const std::uint64_t ticks = session.core_ticks(), misses = session.deadline_misses();
+  EXPECT_GE(ticks, 900u) << out.str();
+  EXPECT_LT(static_cast<double>(misses), 0.1 * static_cast<double>(ticks)) << out.str();
+  EXPECT_GE(counter.steps.load(), static_cast<long>(2 * ticks) - 4);
+  EXPECT_TRUE(counter.hitting.load()) << out.str();
+  EXPECT_GT(views.load(), 20);
+  const std::string text = out.str();
+  EXPECT_NE(text.find("recording written: "), std::string::npos) << text;
+  EXPECT_NE(text.find("speed 1.2000 m/s"), std::string::npos) << text;
+  std::filesystem::remove(file);
+  std::printf("realtime flood: %llu ticks, %llu deadline misses, %ld views\n",
+              static_cast<unsigned long long>(ticks), static_cast<unsigned long long>(misses),
+              views.load());
 }
 
 }  // namespace

@@ -8,16 +8,21 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "control/full_system.hpp"
 #include "core/csv.hpp"
 #include "learning/dataset.hpp"
 #include "learning/learner.hpp"
 #include "perception/udp.hpp"
 #include "perception/vision_message.hpp"
 #include "system/session.hpp"
+#include "system/system.hpp"
 
 namespace mg::system {
 using namespace mg::control;
@@ -325,6 +330,98 @@ TEST(Session, LostPerceptionDuringAHitBrakes) {
   EXPECT_NE(out.str().find("Hitting -> Braking: fault"), std::string::npos) << out.str();
   const auto ball = session.ball_position();
   EXPECT_LT(std::hypot(ball[0], ball[1]), 0.005) << "the ball was not touched";
+}
+
+/// The whole simulation state after one chosen step (ball, arm, every qpos/qvel/ctrl).
+class StepCapture final : public SessionObserver {
+ public:
+  explicit StepCapture(long at) : at_(at) {}
+  void after_step(const SessionView& v) override {
+    if (++steps_ != at_) return;
+    const mjModel* m = v.world.model();
+    qpos.assign(v.d->qpos, v.d->qpos + m->nq);
+    qvel.assign(v.d->qvel, v.d->qvel + m->nv);
+    ctrl.assign(v.d->ctrl, v.d->ctrl + m->nu);
+    time = v.d->time;
+  }
+  std::vector<double> qpos, qvel, ctrl;
+  double time = -1.0;
+
+ private:
+  long at_;
+  long steps_ = 0;
+};
+
+// Issue 20: the console and the putt harness run the one core loop. A console script that asks
+// for the rest pose and then for the hit at the tick the putt asked for it gives the putt's bits,
+// step for step, through contact and the whole roll.
+TEST(Session, AConsoleScriptAndAPuttGiveTheSameBits) {
+  const System system(ModuleConfig{});
+  const sim::World& world = system.arm_world();
+  auto d = world.make_data();
+  const double angle = 0.05, speed = 1.5;
+  // The simulated approach, the arm simulated to the end (no hand-off, no approach cache).
+  const control::FullPuttResult putt = control::full_system_putt(
+      world, system.module(), d.get(), world.field().hole.position, angle, speed);
+  ASSERT_TRUE(putt.hit);
+  ASSERT_FALSE(putt.handed_off);
+
+  StepCapture capture(putt.arm_steps);
+  SessionOptions options;
+  options.observer = &capture;
+  std::ostringstream out;
+  Session session(ModuleConfig{}, options, out);
+  session.execute("angle 0.05");
+  session.execute("speed 1.5");
+  session.execute("rest");
+  session.execute(fmt::format("wait {:.17g}", putt.rest_time));  // to the putt's hit request
+  EXPECT_EQ(session.time(), putt.rest_time) << out.str();
+  session.execute("hit");
+  session.execute(fmt::format("wait {:.17g}", putt.outcome.duration + 1.0));
+  ASSERT_EQ(capture.time, d->time) << out.str();
+  const mjModel* m = world.model();
+  EXPECT_EQ(capture.qpos, std::vector<double>(d->qpos, d->qpos + m->nq));
+  EXPECT_EQ(capture.qvel, std::vector<double>(d->qvel, d->qvel + m->nv));
+  EXPECT_EQ(capture.ctrl, std::vector<double>(d->ctrl, d->ctrl + m->nu));
+  EXPECT_NE(out.str().find(putt.outcome.sunk ? "ball: holed" : "ball: "), std::string::npos)
+      << out.str();
+}
+
+/// Throws once, during the hit: a buggy observer (a viewer, a test) on the core's thread.
+class ThrowingObserver final : public SessionObserver {
+ public:
+  void after_step(const SessionView& v) override {
+    if (v.module.state == ModuleState::kHitting && !thrown) {
+      thrown = true;
+      throw std::runtime_error("observer bug");
+    }
+  }
+  bool thrown = false;
+};
+
+// A hook's exception is a fault of the module: the arm brakes, the session says why and goes on
+// (never std::terminate); `idle` at standstill clears it.
+TEST(Session, AnObserversExceptionBrakesTheArmAndIsReported) {
+  ThrowingObserver observer;
+  SessionOptions options;
+  options.observer = &observer;
+  std::ostringstream out;
+  Session session(ModuleConfig{}, options, out);
+  for (const char* line : {"speed 1.0", "hit", "wait 3", "status"}) session.execute(line);
+  const std::string text = out.str();
+  ASSERT_TRUE(observer.thrown) << text;
+  EXPECT_NE(text.find("fault: an observer threw (observer bug)"), std::string::npos) << text;
+  EXPECT_NE(text.find("Hitting -> Braking: fault"), std::string::npos) << text;
+  EXPECT_EQ(text.find("the ball was hit"), std::string::npos) << text;
+  EXPECT_EQ(session.state(), ModuleState::kIdle);
+  session.execute("hit");  // refused while the fault lasts
+  session.execute("wait 0.1");
+  EXPECT_EQ(session.state(), ModuleState::kIdle) << out.str();
+  session.execute("idle");
+  EXPECT_NE(out.str().find("hook fault cleared"), std::string::npos) << out.str();
+  session.execute("hit");
+  session.execute("wait 3");
+  EXPECT_NE(out.str().find("Hitting -> Braking: the ball was hit"), std::string::npos) << out.str();
 }
 
 TEST(Session, AutoTakesAngleAndSpeedFromTheParameterModel) {

@@ -1,0 +1,152 @@
+#pragma once
+/// The parts of a full-system putt (control/full_system.hpp) other than its flow: the execution
+/// noise (a hook of the core loop), the checks of its worlds, the settled ball, the launch turned
+/// by a plant, the bookkeeping of limits and touches, and the per-thread scratch (PuttScratch's
+/// caches). Internal to the control library.
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include "control/full_system.hpp"
+#include "core/rng.hpp"
+
+namespace mg::control {
+
+constexpr double kBallSettleTime = 0.3;  ///< [s] ball at rest in its contact (time constant 0.02 s)
+constexpr double kClubReachMargin = 0.05;    ///< [m] tracking error, idle drift
+constexpr double kHandoffHysteresis = 0.05;  ///< [m] hand-off this much beyond the fallback radius
+constexpr int kMaxHandoffFallbacks = 3;
+constexpr std::size_t kSettledCacheSize = 8;
+constexpr std::size_t kAtRestCacheSize = 4;
+
+/// After each step: the applied and commanded torque and velocity ratios, the position margin,
+/// a fault, and the club-ball touches (from the simulator's contacts).
+void track_ratios(const ModuleModel& model, const SimIds& ids, const mjData* d,
+                  const ModuleData& data, FullPuttResult& r);
+
+/// Execution noise (FullPuttOptions::torque_noise). Disabled at zero: then nothing here touches
+/// mjData and the run is bit-identical to a noise-free build.
+/// A hook of the putt's core loop: before each physics step on a core tick, a fresh draw per
+/// joint replaces the previous one in d->qfrc_applied (added to whatever else is applied there).
+/// The module never reads qfrc_applied, so drawing after the tick's write is the same as before.
+class TorqueNoise final : public CoreHooks {
+ public:
+  TorqueNoise(const ModuleModel& model, const CoreLoop& loop, const FullPuttOptions& options)
+      : arm_(&model.arm()),
+        ids_(&loop.ids().arm),
+        d_(loop.data()),
+        enabled_(options.torque_noise > 0.0),
+        rng_(derive_seed(options.seed, 1)),
+        steps_per_tick_(loop.steps_per_tick()) {
+    for (int j = 0; j < 7; ++j) std_[j] = options.torque_noise * arm_->torque_limit()[j];
+  }
+  bool enabled() const { return enabled_; }
+  void before_step(long step) override {
+    if (!enabled_ || step % steps_per_tick_ != 0) return;
+    for (int j = 0; j < 7; ++j) {
+      const double tau = std_[j] * normal_(rng_);
+      d_->qfrc_applied[ids_->dof[static_cast<std::size_t>(j)]] += tau - last_[j];
+      last_[j] = tau;
+    }
+  }
+
+ private:
+  const robot::ArmModel* arm_;
+  const robot::ArmIds* ids_;
+  mjData* d_;
+  bool enabled_;
+  Rng rng_;
+  std::normal_distribution<double> normal_{0.0, 1.0};
+  int steps_per_tick_ = 2;
+  robot::Vector7 std_ = robot::Vector7::Zero();
+  robot::Vector7 last_ = robot::Vector7::Zero();
+};
+
+/// The tee (or the stance's ball), plus a Gaussian error of std `placement_noise` per axis (seeded
+/// stream 0).
+std::array<double, 2> noisy_ball_start(const sim::World& world, const FullPuttOptions& options);
+
+/// The ball world must be the arm world without the arm (InputError otherwise).
+void check_ball_world(const sim::World& world, const sim::World& ball);
+/// The arm of `world` must stand where `stance` puts the module's mount (InputError otherwise).
+void check_stance(const sim::World& world, const ModuleModel& model, const robot::Stance& stance);
+
+/// The ball at `start`, at rest in its ground contact: settled in `settle_world` (the ball world,
+/// else `world` with the arm held at the default posture, away from the ball).
+sim::BallState settled_ball(const sim::World& settle_world, mjData* sd, const robot::ArmIds* arm,
+                            std::array<double, 2> start, std::array<double, 2> hole);
+
+/// Turns the ball's motion about the vertical by `angle` [rad]: its linear velocity, and its
+/// orientation (so its body-frame spin turns with it).
+void turn_ball(const sim::World& world, mjData* d, double angle);
+
+// What of a module model the approach depends on (besides the model's address): its config
+// (the rest speeds and the IK options derive from it) and the hitting point x*. A replaced model
+// at the same address does not hit the cache.
+struct ApproachKey {
+  ModuleConfig config;
+  Eigen::Vector3d x_star = Eigen::Vector3d::Zero();
+  bool operator==(const ApproachKey&) const = default;
+};
+
+ApproachKey approach_key(const ModuleModel& model);
+
+struct PuttScratch::Impl {
+  // mjData of a ball world; remade when another world is used.
+  sim::DataPtr ball_data;
+  std::uint64_t ball_data_world = 0;
+  // Settled balls: a deterministic function of (settle world, start, hole), so a hit gives the
+  // bits of settling anew.
+  struct Settled {
+    std::uint64_t world = 0;
+    std::array<double, 2> start{}, hole{};
+    sim::BallState state;
+  };
+  std::vector<Settled> settled;
+  std::size_t next_slot = 0;
+
+  // Arm and ball at the hit request after a simulated approach (RestStart::kApproach), by
+  // everything the approach depends on: a hit continues with exactly the bits of the approach.
+  struct AtRest {
+    std::uint64_t world = 0;
+    const ModuleModel* model = nullptr;
+    ApproachKey key;
+    double angle = 0.0, settle_timeout = 0.0;
+    std::array<double, 2> start{}, hole{};
+    sim::DataPtr data;
+    std::unique_ptr<ModuleData> module;
+    long steps = 0;
+    FullPuttResult result;  // the bookkeeping of the approach
+  };
+  std::vector<AtRest> at_rest;
+  std::size_t next_at_rest = 0;
+
+  AtRest& at_rest_slot();
+
+  mjData* data_for(const sim::World& w) {
+    if (!ball_data || ball_data_world != w.instance_id()) {
+      ball_data = w.make_data();
+      ball_data_world = w.instance_id();
+    }
+    return ball_data.get();
+  }
+  const sim::BallState* find(std::uint64_t w, std::array<double, 2> start,
+                             std::array<double, 2> hole) const {
+    for (const auto& s : settled)
+      if (s.world == w && s.start == start && s.hole == hole) return &s.state;
+    return nullptr;
+  }
+  void store(std::uint64_t w, std::array<double, 2> start, std::array<double, 2> hole,
+             const sim::BallState& state) {
+    if (settled.size() < kSettledCacheSize) {
+      settled.push_back({w, start, hole, state});
+    } else {
+      settled[next_slot] = {w, start, hole, state};
+      next_slot = (next_slot + 1) % kSettledCacheSize;
+    }
+  }
+};
+
+}  // namespace mg::control
