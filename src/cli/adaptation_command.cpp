@@ -23,8 +23,7 @@ namespace mg::cli {
 
 void add_adaptation_command(CLI::App& app) {
   struct Args {
-    std::string field = "flat", config, hitting_model, model, checkpoints = "0,1,2,3,5,10",
-                learner = "adapt", out;
+    std::string field = "flat", config, hitting_model, model, learner = "adapt", out;
     std::vector<std::string> plants_given;
     experiments::AdaptationOptions o;
     bool json = false, no_oracle = false;
@@ -49,9 +48,9 @@ void add_adaptation_command(CLI::App& app) {
       ->check(unsigned_integer())
       ->capture_default_str();
   cmd->add_option("--plant", a->plants_given, "Plant files instead of random plants (repeatable)");
-  cmd->add_option("--checkpoints", a->checkpoints,
-                  "Adaptation putts, increasing (0: the nominal model)")
-      ->capture_default_str();
+  add_list_option(cmd, "--checkpoints", a->o.checkpoints,
+                  "Adaptation putts, increasing, comma-separated (0: the nominal model)",
+                  unsigned_integer(kMaxCheckpoint));
   cmd->add_option("--situations", a->o.situations, "Test situations per checkpoint")
       ->capture_default_str();
   cmd->add_option("--seed", a->o.seed, "Seed of the adaptation runs")
@@ -70,10 +69,6 @@ void add_adaptation_command(CLI::App& app) {
   cmd->callback([a] {
     a->o.learner = experiments::parse_curve_learner(a->learner);
     a->o.oracle = !a->no_oracle;
-    a->o.checkpoints.clear();
-    for (const auto& c : parse_names("--checkpoints", a->checkpoints))
-      a->o.checkpoints.push_back(
-          static_cast<int>(std::min<std::uint64_t>(parse_unsigned("--checkpoints", c), 1000000)));
     for (const auto& p : a->plants_given) a->o.given.push_back(plant::load_plant(p));
     a->o.validate();
     auto model = std::make_shared<learning::Model>(learning::load_model(a->model));

@@ -28,6 +28,47 @@ CLI::Validator finite_number(double lo, double hi) {
       fmt::format("NUMBER in [{}, {}]", lo, hi));
 }
 
+CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double v = 0.0;
+        const char* first = text.data() + (!text.empty() && text.front() == '+' ? 1 : 0);
+        auto [ptr, ec] = std::from_chars(first, text.data() + text.size(), v);
+        if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() ||
+            !std::isfinite(v))
+          return fmt::format("expected a finite number, got '{}'", text);
+        return {};
+      },
+      "NUMBER");
+}
+
+CLI::Validator any_name() {
+  return CLI::Validator([](std::string&) { return std::string(); }, "NAME");
+}
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    items.push_back(text.substr(start, comma == std::string::npos ? comma : comma - start));
+    if (comma == std::string::npos) return items;
+    start = comma + 1;
+  }
+}
+
+CLI::Validator list_of(const CLI::Validator& element) {
+  return CLI::Validator(
+      [element](std::string& text) -> std::string {
+        for (std::string item : split_list(text)) {
+          if (item.empty()) return fmt::format("empty element in the list '{}'", text);
+          if (std::string error = element(item); !error.empty()) return error;
+        }
+        return {};
+      },
+      element.get_description() + ",...");
+}
+
 CLI::Validator unsigned_integer(std::uint64_t hi) {
   return CLI::Validator(
       [hi](std::string& text) -> std::string {
@@ -78,21 +119,6 @@ std::array<double, N> parse_vector(const std::string& what, const std::string& t
 
 template std::array<double, 2> parse_vector<2>(const std::string&, const std::string&);
 template std::array<double, 3> parse_vector<3>(const std::string&, const std::string&);
-
-std::vector<std::string> parse_names(const std::string& what, const std::string& text) {
-  std::vector<std::string> names;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = text.find(',', start);
-    std::string name =
-        text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (name.empty()) throw InputError(fmt::format("{}: empty name in '{}'", what, text));
-    names.push_back(std::move(name));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return names;
-}
 
 plant::Plant load_plant_arg(const std::string& path) {
   if (path.empty()) return {};

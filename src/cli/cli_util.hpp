@@ -1,10 +1,13 @@
 #pragma once
 /// Small parsing helpers shared by the subcommands.
 #include <array>
+#include <charconv>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include <fmt/format.h>
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -18,6 +21,48 @@ namespace mg::cli {
 ///
 /// A finite number in [lo, hi] (CLI::Range lets NaN through; CLI11 itself parses "nan", "inf").
 CLI::Validator finite_number(double lo, double hi);
+/// Any finite number.
+CLI::Validator finite_number();
+/// Any text (the element check of a list of names).
+CLI::Validator any_name();
+
+/// The elements of a comma-separated list, empty ones kept ("a,,b" -> "a", "", "b"; "" -> "").
+std::vector<std::string> split_list(const std::string& text);
+/// A comma-separated list whose every element passes `element`; an empty element ("1,,2", "1,")
+/// is an error (CLI11's own delimiter would skip it: an ignored argument).
+CLI::Validator list_of(const CLI::Validator& element);
+
+/// The one way to take a list on the command line: `--name a,b,c` (one token per occurrence)
+/// into `target` (double, int or std::string elements), every element checked by `element`
+/// (list_of). A rejected list is a CLI::ValidationError naming the option: one line, exit 2.
+/// The default shown in --help is `target`'s value.
+template <typename T>
+CLI::Option* add_list_option(CLI::App* cmd, const std::string& name, std::vector<T>& target,
+                             const std::string& help, const CLI::Validator& element) {
+  CLI::Option* opt = cmd->add_option_function<std::string>(
+      name,
+      [&target](const std::string& text) {
+        std::vector<T> out;
+        for (const std::string& item : split_list(text)) {
+          if constexpr (std::is_same_v<T, std::string>) {
+            out.push_back(item);
+          } else {  // checked by list_of(element) before this runs
+            T v{};
+            std::from_chars(item.data() + (item.front() == '+' ? 1 : 0), item.data() + item.size(),
+                            v);
+            out.push_back(v);
+          }
+        }
+        target = std::move(out);
+      },
+      help);
+  opt->check(list_of(element));
+  opt->type_name("LIST");
+  opt->default_str(fmt::format("{}", fmt::join(target, ",")));
+  return opt;
+}
+/// Putt counts on the command line at most (checkpoints of the learning curves).
+inline constexpr std::uint64_t kMaxCheckpoint = 1000000;
 /// A decimal integer in [0, hi]: no sign, no fraction, no exponent (CLI11's own conversion turns
 /// "-1" into 2^64 - 1).
 CLI::Validator unsigned_integer(std::uint64_t hi = UINT64_MAX);
@@ -32,9 +77,6 @@ std::uint64_t parse_unsigned(const std::string& what, const std::string& text);
 /// Parses "a,b" (or "a,b,c" with N = 3) into finite doubles; throws `InputError` naming `what`.
 template <std::size_t N>
 std::array<double, N> parse_vector(const std::string& what, const std::string& text);
-
-/// Parses "a,b,c" into names (no empty entries); throws `InputError` naming `what`.
-std::vector<std::string> parse_names(const std::string& what, const std::string& text);
 
 using mg::run_plot_script;  ///< core/plot.hpp
 

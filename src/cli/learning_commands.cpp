@@ -20,29 +20,25 @@
 namespace mg::cli {
 namespace {
 
+const learning::TrainOptions kTrainDefaults{};  // the library's defaults, in one place
+
 struct LearnArgs {
-  std::string method = "gpr";
-  std::string inputs = "xi_x,xi_y";
-  std::string outputs = "angle,speed";
-  int gaussians = 0;
-  std::string select = "bic";
-  int max_gaussians = 5;
-  int restarts = 10;
-  std::uint64_t seed = 1;
-  double reg_covar = 1e-2;
+  std::string method = std::string(learning::method_name(kTrainDefaults.method));
+  std::vector<std::string> inputs = learning::kDefaultInputs;
+  std::vector<std::string> outputs = learning::kDefaultOutputs;
+  int gaussians = kTrainDefaults.num_gaussians;
+  std::string select = std::string(learning::selection_name(kTrainDefaults.selection));
+  int max_gaussians = kTrainDefaults.max_gaussians;
+  int restarts = kTrainDefaults.restarts;
+  std::uint64_t seed = kTrainDefaults.seed;
+  double reg_covar = kTrainDefaults.em.reg_covar;
   CLI::Option* reg_covar_option =
       nullptr;  ///< given: use reg_covar as is; else chosen by cross-validation
-  std::string length_scales, signal_std, noise_std;
+  std::vector<double> length_scales, signal_std, noise_std;
   std::string length_scale_bounds, signal_std_bounds, noise_std_bounds;
   bool no_optimize = false;
   bool json = false;
 };
-
-std::vector<double> parse_numbers(const std::string& what, const std::string& text) {
-  std::vector<double> out;
-  for (const std::string& cell : parse_names(what, text)) out.push_back(parse_number(what, cell));
-  return out;
-}
 
 std::array<double, 2> parse_bounds(const std::string& what, const std::string& text) {
   if (text.empty()) return {0.0, 0.0};
@@ -54,8 +50,8 @@ std::array<double, 2> parse_bounds(const std::string& what, const std::string& t
 
 void add_learn_options(CLI::App* cmd, LearnArgs& a) {
   cmd->add_option("--method", a.method, "gpr | gmr | joint-gmr")->capture_default_str();
-  cmd->add_option("--inputs", a.inputs, "Input columns, comma-separated")->capture_default_str();
-  cmd->add_option("--outputs", a.outputs, "Output columns, comma-separated")->capture_default_str();
+  add_list_option(cmd, "--inputs", a.inputs, "Input columns, comma-separated", any_name());
+  add_list_option(cmd, "--outputs", a.outputs, "Output columns, comma-separated", any_name());
   cmd->add_option("--gaussians", a.gaussians, "Number of Gaussians (GMR); 0 = choose by --select")
       ->capture_default_str();
   cmd->add_option("--select", a.select, "How to choose the number of Gaussians: bic | cv")
@@ -71,12 +67,15 @@ void add_learn_options(CLI::App* cmd, LearnArgs& a) {
   a.reg_covar_option = cmd->add_option("--reg-covar", a.reg_covar,
                                        "GMM covariance regularisation (standardised units, > 0); "
                                        "default: chosen from 1e-6..1e-1 by cross-validation");
-  cmd->add_option("--length-scales", a.length_scales,
-                  "GPR initial length scales: one, or one per input");
-  cmd->add_option("--signal-std", a.signal_std,
-                  "GPR initial signal std: one, or one per output (output units)");
-  cmd->add_option("--noise-std", a.noise_std,
-                  "GPR initial noise std: one, or one per output (output units)");
+  add_list_option(cmd, "--length-scales", a.length_scales,
+                  "GPR initial length scales: one, or one per input (comma-separated)",
+                  finite_number());
+  add_list_option(cmd, "--signal-std", a.signal_std,
+                  "GPR initial signal std: one, or one per output (output units, comma-separated)",
+                  finite_number());
+  add_list_option(cmd, "--noise-std", a.noise_std,
+                  "GPR initial noise std: one, or one per output (output units, comma-separated)",
+                  finite_number());
   cmd->add_option("--length-scale-bounds", a.length_scale_bounds,
                   "GPR length scale bounds LO,HI (input units)");
   cmd->add_option("--signal-std-bounds", a.signal_std_bounds,
@@ -98,8 +97,7 @@ learning::TrainOptions make_train_options(const LearnArgs& a, std::size_t num_in
   o.seed = a.seed;
   o.em.reg_covar = a.reg_covar;
   o.choose_reg_covar = a.reg_covar_option == nullptr || a.reg_covar_option->count() == 0;
-  auto per_output = [&](const std::string& what, const std::string& text) {
-    std::vector<double> v = text.empty() ? std::vector<double>{} : parse_numbers(what, text);
+  auto per_output = [&](const std::string& what, const std::vector<double>& v) {
     if (!v.empty() && v.size() != 1 && v.size() != num_outputs)
       throw InputError(fmt::format("{}: expected 1 or {} values (one per output), got {}", what,
                                    num_outputs, v.size()));
@@ -110,9 +108,7 @@ learning::TrainOptions make_train_options(const LearnArgs& a, std::size_t num_in
   };
   const std::vector<double> sf = per_output("--signal-std", a.signal_std);
   const std::vector<double> sn = per_output("--noise-std", a.noise_std);
-  const std::vector<double> ls = a.length_scales.empty()
-                                     ? std::vector<double>{}
-                                     : parse_numbers("--length-scales", a.length_scales);
+  const std::vector<double>& ls = a.length_scales;
   if (!ls.empty() && ls.size() != 1 && ls.size() != num_inputs)
     throw InputError(fmt::format("--length-scales: expected 1 or {} values (one per input), got {}",
                                  num_inputs, ls.size()));
@@ -154,8 +150,8 @@ void add_learning_commands(CLI::App& app) {
   train->add_option("-o,--output", t->model, "Model file to write (JSON)")->required();
   add_learn_options(train, t->learn);
   train->callback([t] {
-    const auto inputs = parse_names("--inputs", t->learn.inputs);
-    const auto outputs = parse_names("--outputs", t->learn.outputs);
+    const auto& inputs = t->learn.inputs;
+    const auto& outputs = t->learn.outputs;
     const learning::TrainOptions opt = make_train_options(t->learn, inputs.size(), outputs.size());
     const CsvTable table = read_csv(t->data);
     const learning::Dataset data = learning::dataset_from_table(table, inputs, outputs);
@@ -248,8 +244,8 @@ void add_learning_commands(CLI::App& app) {
   validate->add_option("-o,--output", v->model, "Also write the trained model here");
   add_learn_options(validate, v->learn);
   validate->callback([v] {
-    const auto inputs = parse_names("--inputs", v->learn.inputs);
-    const auto outputs = parse_names("--outputs", v->learn.outputs);
+    const auto& inputs = v->learn.inputs;
+    const auto& outputs = v->learn.outputs;
     const learning::TrainOptions opt = make_train_options(v->learn, inputs.size(), outputs.size());
     const learning::Dataset train_data = learning::load_dataset(v->train, inputs, outputs);
     const learning::Dataset val_data = learning::load_dataset(v->validate, inputs, outputs);

@@ -298,7 +298,6 @@ void add_reproduce(CLI::App& app) {
   auto o = std::make_shared<experiments::ReproduceOptions>();
   auto out = std::make_shared<std::string>("out/reproduce");
   auto datasets = std::make_shared<std::string>();
-  auto fields = std::make_shared<std::string>("flat,multiple-hills,regular-hill,arctan");
   CLI::App* cmd = app.add_subcommand("reproduce",
                                      "Thesis chapter 6 end to end: data sets, training, MSE, the "
                                      "robot playing, figures, report.md");
@@ -318,7 +317,7 @@ void add_reproduce(CLI::App& app) {
                 "Collect the data sets with the teacher instead of using the shipped ones");
   cmd->add_option("--datasets", *datasets,
                   "Folder with <field>.csv and <field>-validation.csv (default: data/datasets)");
-  cmd->add_option("--fields", *fields, "Fields, comma-separated")->capture_default_str();
+  add_list_option(cmd, "--fields", o->fields, "Fields, comma-separated", any_name());
   cmd->add_option("--config", o->config, "Module config YAML");
   cmd->add_flag("!--no-plots", o->plots, "Skip the matplotlib figures");
   cmd->add_flag("!--no-real-robot", o->real_robot,
@@ -329,10 +328,9 @@ void add_reproduce(CLI::App& app) {
   cmd->add_option("--round-seeds", o->round_seeds,
                   "Seeds of the round of minigolf (default 20, 3 with --quick; 0: skip it)")
       ->check(CLI::Range(0, 1000));
-  cmd->callback([o, out, datasets, fields] {
+  cmd->callback([o, out, datasets] {
     o->out = *out;
     o->datasets = *datasets;
-    o->fields = parse_names("--fields", *fields);
     if (const char* rev = std::getenv("MINIGOLF_REVISION"))
       o->revision = rev;
     else {

@@ -32,7 +32,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct DsArgs {
-  std::string hitting_model, demos, plane = "xz", out, data_dir, speeds = "0.5,1.0,1.5";
+  std::string hitting_model, demos, plane = "xz", out, data_dir;
+  std::vector<double> speeds{0.5, 1.0, 1.5};  ///< strength: club speeds of the modulator curves
 };
 
 void add_ds_inputs(CLI::App* cmd, DsArgs& a) {
@@ -88,12 +89,11 @@ void add_plot_strength(CLI::App* plot) {
   CLI::App* cmd = plot->add_subcommand(
       "strength", "The strength factor along the demonstrations and both speed modulators");
   add_ds_inputs(cmd, *a);
-  cmd->add_option("--speeds", a->speeds, "Club speeds v^d [m/s] of the modulator curves, a,b,...")
-      ->capture_default_str();
+  add_list_option(cmd, "--speeds", a->speeds,
+                  "Club speeds v^d [m/s] of the modulator curves, comma-separated",
+                  finite_number());
   cmd->callback([a] {
-    std::vector<double> speeds;
-    for (const auto& s : parse_names("--speeds", a->speeds))
-      speeds.push_back(parse_number("--speeds", s));
+    const std::vector<double>& speeds = a->speeds;
     const DsInputs in = load_ds_inputs(*a);
     const PlotDataDir dir(a->data_dir);
     const auto strength = dir.write("strength.csv", viz::strength_csv(in.model, in.demos));

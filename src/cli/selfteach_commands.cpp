@@ -116,8 +116,7 @@ void add_self_teach(CLI::App& app) {
 void add_curves(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string learner = "self-teach", checkpoints = "10,25,50,100,150", situations_spec, out,
-                prior;
+    std::string learner = "self-teach", situations_spec, out, prior;
     experiments::CurveOptions o;
   };
   auto a = std::make_shared<Args>();
@@ -131,8 +130,8 @@ void add_curves(CLI::App& app) {
   cmd->add_option(
       "--prior", a->prior,
       "Learner model to adapt (adapt, adapt-play, append), e.g. trained in the nominal simulator");
-  cmd->add_option("--checkpoints", a->checkpoints, "Putt counts, increasing, comma-separated")
-      ->capture_default_str();
+  add_list_option(cmd, "--checkpoints", a->o.checkpoints,
+                  "Putt counts, increasing, comma-separated", unsigned_integer(kMaxCheckpoint));
   cmd->add_option("--seeds", a->o.seeds, "Runs")->capture_default_str();
   cmd->add_option("--situations", a->o.situations, "Test situations per checkpoint")
       ->capture_default_str();
@@ -157,10 +156,6 @@ void add_curves(CLI::App& app) {
       experiments::check_playable_model(*prior, a->prior);
       a->o.prior = std::move(prior);
     }
-    a->o.checkpoints.clear();
-    for (const auto& c : parse_names("--checkpoints", a->checkpoints))
-      a->o.checkpoints.push_back(
-          static_cast<int>(std::min<std::uint64_t>(parse_unsigned("--checkpoints", c), 1000000)));
     if (a->o.prior && learner == experiments::CurveLearner::kAppend &&
         (a->o.prior->method != learning::Method::kGpr || a->o.prior->prior))
       throw InputError(fmt::format(

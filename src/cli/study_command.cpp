@@ -64,7 +64,7 @@ nlohmann::json summary_json(const experiments::LaunchStudyResult& r) {
 void add_study_commands(CLI::App& app) {
   struct Options {
     std::string field = "flat";
-    std::string angles = "-10,0,10";
+    std::vector<double> angles = experiments::LaunchStudyOptions{}.angles_deg;
     int hits = 10;
     double speed = 1.0;
     double torque_noise = 0.01;
@@ -86,8 +86,8 @@ void add_study_commands(CLI::App& app) {
       "Launch-angle and hitting-speed error of repeated hits with execution noise (thesis 6.1)");
   cmd->add_option("--field", o->field, "Shipped field name or path to a field file")
       ->capture_default_str();
-  cmd->add_option("--angles-deg", o->angles, "Commanded hitting angles [deg], comma-separated")
-      ->capture_default_str();
+  add_list_option(cmd, "--angles-deg", o->angles, "Commanded hitting angles [deg], comma-separated",
+                  finite_number());
   cmd->add_option("--hits", o->hits, "Hits per angle")
       ->check(unsigned_integer(100000))
       ->check(CLI::Range(1, 100000))
@@ -117,9 +117,7 @@ void add_study_commands(CLI::App& app) {
   cmd->add_flag("--plot", o->plot, "Also draw DIR/launch_error.png (scripts/plot_launch_error.py)");
   cmd->callback([o] {
     experiments::LaunchStudyOptions opt;
-    opt.angles_deg.clear();
-    for (const std::string& cell : parse_names("--angles-deg", o->angles))
-      opt.angles_deg.push_back(parse_number("--angles-deg", cell));
+    opt.angles_deg = o->angles;
     opt.hits = o->hits;
     opt.speed = o->speed;
     opt.torque_noise = o->torque_noise;

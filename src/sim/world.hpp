@@ -125,7 +125,7 @@ class World {
   /// Resets `d` to the model's initial state: ball on the tee, hole at the field's default.
   void reset(mjData* d) const;
 
-  /// Moves the hole (cup walls, floor, contact filter) to `position`. Throws `InputError` if
+  /// Moves the hole (cup walls, floor, the ground's gap) to `position`. Throws `InputError` if
   /// the hole would leave the lane or sit on ground too steep for its depth.
   void set_hole(mjData* d, std::array<double, 2> position) const;
   /// The hole position currently set in `d`.

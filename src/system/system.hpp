@@ -76,9 +76,9 @@ class System {
   robot::WamMount true_mount_;  ///< the real arm in the robot's frame (the plant's friction, club)
 };
 
-/// The stance rule (docs/play.md "The ball wherever it lies"): the base stands beside the ball as
-/// it stands beside the tee, its hitting frame turned to `aim` [rad, world]: the robot's frame
-/// has the ball at its origin (x, y) and +x along `aim`; the base stands as high above the
+/// The stance rule (docs/round.md "How a stroke is played", 3. Stand): the base stands beside the
+/// ball as it stands beside the tee, its hitting frame turned to `aim` [rad, world]: the robot's
+/// frame has the ball at its origin (x, y) and +x along `aim`; the base stands as high above the
 /// (believed) ground under the ball as above the ground under the tee. For the field's tee at the
 /// origin and aim 0: the identity.
 robot::Stance stance_for(const System& system, std::array<double, 2> ball, double aim);

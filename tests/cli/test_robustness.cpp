@@ -8,11 +8,14 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <sys/stat.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <sstream>
@@ -100,6 +103,25 @@ TEST_F(Robustness, NegativeSeedIsRefusedNotWrappedAround) {
     const CommandResult r = run_minigolf(args);
     expect_input_error(r, args, {"--seed"});
   }
+}
+
+// Comma-separated lists are CLI11 lists: a bad element is a one-line error naming the option,
+// exit 2, before any work (elements checked one by one; empty ones are skipped).
+TEST_F(Robustness, ListOptionsRejectABadElementNamingTheOption) {
+  for (const auto& [args, option] : std::vector<std::pair<std::string, std::string>>{
+           {"curves --checkpoints 1,x -o " + path("c.csv"), "--checkpoints"},
+           {"curves --checkpoints 1,-2 -o " + path("c.csv"), "--checkpoints"},
+           {"study adaptation --model m.json --checkpoints 0,2000000", "--checkpoints"},
+           {"study launch-error --angles-deg 1,nan", "--angles-deg"},
+           {"plot strength --speeds 1,inf -o " + path("s.png"), "--speeds"},
+           {"train --length-scales 0.1,abc " + train_ + " -o " + path("m.json"), "--length-scales"},
+           {"reproduce --fields flat,mars -o " + path("r"), "mars"}}) {
+    const CommandResult r = run_minigolf(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(path("r")));
 }
 
 TEST_F(Robustness, DirectoryAsConfigOrScriptIsRefused) {
