@@ -70,9 +70,9 @@ if [[ $what == tsan || $what == all ]]; then
   start=$(date +%s)
   cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMINIGOLF_BUILD_BENCHMARKS=OFF "${launcher[@]}" \
     -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread" >/dev/null
-  nice -n 10 cmake --build build-tsan -j"$jobs" --target test_system test_system_realtime test_cli test_control minigolf
+  nice -n 10 cmake --build build-tsan -j"$jobs" --target test_system test_system_realtime test_cli test_control test_core minigolf
   built=$(date +%s)
-  tsan_suites='Session|System|Realtime|ConsoleSignalRealtime|Signals/ConsoleSignal|ConsoleCommand|CoreLoop|TimingHistogram'
+  tsan_suites='Session|SessionCore|System|Realtime|ConsoleSignalRealtime|Signals/ConsoleSignal|ConsoleCommand|CoreLoop|TimingHistogram|SpscQueue|TripleBuffer'
   (cd build-tsan && TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" \
      nice -n 10 ctest -j1 --output-on-failure --timeout 3000 -R "^($tsan_suites)\.")
   echo "sanitize.sh: TSan (session and console): build $((built - start)) s, tests $(( $(date +%s) - built )) s"

@@ -26,8 +26,8 @@ struct MeasuredState {
   robot::Vector7 qd = robot::Vector7::Zero();  ///< [rad/s] joint velocities, J1..J7
   /// What perception sees, on robot-update ticks (every robot_update_divider-th): module_update
   /// then runs the robot update (robot_update: the perception and the DS) first. Empty on the
-  /// other ticks, and for schedulers that call robot_update themselves (the lockstep runner, the
-  /// console's robot thread); the module acts on the latest perception either way.
+  /// other ticks, and for schedulers that call robot_update themselves (control::CoreLoop); the
+  /// module acts on the latest perception either way.
   std::optional<perception::Perceived> perception;
 };
 

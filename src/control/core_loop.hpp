@@ -18,7 +18,7 @@
 ///   steps_per_tick times:
 ///     hooks.before_step(step); physics step; hooks.after_step(step)
 ///
-/// The core update (read, module_update, write) is timed into one TimingHistogram.
+/// The core update (module_update and the write) is timed into one TimingHistogram.
 ///
 /// Real-time contract: `tick`, `step` and `tick_without_physics` allocate nothing, do no I/O and
 /// never throw. A hook that throws is caught: the module latches a fault (`ModuleData::hook_fault`:

@@ -15,13 +15,13 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   if (ball_world != nullptr) check_ball_world(world, *ball_world);
   options.validate();
   check_stance(world, model, options.stance);
-  const SimIds ids = find_sim_ids(world);
   std::unique_ptr<PuttScratch> local;
   if (scratch == nullptr) {
     local = std::make_unique<PuttScratch>();
     scratch = local.get();
   }
   PuttScratch::Impl& mem = scratch->impl();
+  const SimIds& ids = mem.ids_for(world);
 
   world.reset(d);
   world.set_hole(d, hole);

@@ -125,6 +125,17 @@ struct PuttScratch::Impl {
 
   AtRest& at_rest_slot();
 
+  // The simulator's ids of the last arm world (a lookup by name per world, not per putt).
+  SimIds ids;
+  std::uint64_t ids_world = 0;
+  const SimIds& ids_for(const sim::World& w) {
+    if (ids_world != w.instance_id()) {
+      ids = find_sim_ids(w);
+      ids_world = w.instance_id();
+    }
+    return ids;
+  }
+
   mjData* data_for(const sim::World& w) {
     if (!ball_data || ball_data_world != w.instance_id()) {
       ball_data = w.make_data();

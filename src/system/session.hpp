@@ -90,7 +90,7 @@ class SessionObserver {
 };
 
 struct SessionOptions {
-  bool realtime = false;  ///< three threads paced by the wall clock; else lockstep
+  bool realtime = false;  ///< core, I/O and user threads paced by the wall clock; else lockstep
   /// Lockstep only: `wait S` takes S seconds of wall clock (sleeps between ticks, outside the
   /// mutex), for watching; the simulation is the same bits as unpaced.
   bool paced = false;

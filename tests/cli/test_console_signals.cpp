@@ -145,7 +145,7 @@ INSTANTIATE_TEST_SUITE_P(Signals, ConsoleSignal,
                          [](const auto& info) { return std::string(info.param.second); });
 
 TEST(ConsoleSignalRealtime, KeepsTheRecordingWithTheThreadsRunning) {
-  // Three threads: the signal may land on the core or robot thread; it must still end the wait.
+  // Three threads: the signal may land on the core or I/O thread; it must still end the wait.
   Dir dir("mg_sig_rt");
   const fs::path rec = dir.path / "rec.csv", out = dir.path / "out.txt",
                  script = dir.path / "s.txt";
