@@ -3,7 +3,7 @@
 //      [--model FIELD=FILE] [--seed S] [--plant P] [--config F] [--hitting-model F] [--threads N]
 //      [--json] [-o CSV]
 // play --course COURSE[,COURSE...] --compare [--seeds N] [-o MARKDOWN]
-// A round of minigolf (game/round.hpp, docs/play.md).
+// A round of minigolf (game/round.hpp, docs/round.md).
 #include <map>
 #include <memory>
 #include <string>
@@ -82,7 +82,7 @@ void run_round(const Args& a) {
   }
 }
 
-/// Every player over `seeds` seeds on every course: the Markdown tables of docs/play.md.
+/// Every player over `seeds` seeds on every course: the Markdown tables of docs/round.md.
 void run_compare(const Args& a) {
   std::vector<game::Course> courses;
   for (const auto& c : a.courses) courses.push_back(game::load_course(c));

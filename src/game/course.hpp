@@ -1,5 +1,5 @@
 #pragma once
-/// A course: a round of holes, each on a field (docs/play.md "A round of minigolf").
+/// A course: a round of holes, each on a field (docs/round.md "Course files").
 ///
 /// Course files are YAML (`format_version: 1`); shipped ones live in data/courses/ and are named
 /// without a path, like fields. A hole names a field (shipped name, or a path relative to the

@@ -1,7 +1,7 @@
 #pragma once
-/// Choosing a stroke (docs/play.md "Choosing a putt"): a search over ball launches with imagined
-/// ball-only putts in a world (the robot's own model of the field, or the true one for the oracle
-/// planner), scored by the expected strokes to finish the hole under a launch error.
+/// Choosing a stroke (docs/round.md "How a stroke is played"): a search over ball launches with
+/// imagined ball-only putts in a world (the robot's own model of the field, or the true one for the
+/// oracle planner), scored by the expected strokes to finish the hole under a launch error.
 ///
 /// 1. Direct: launch angles around the line to the hole (+-kDirectSpan, kFineStep apart) at a
 ///    geometric ladder of launch speeds.

@@ -1,5 +1,5 @@
 #pragma once
-/// What a round reports (docs/play.md): the JSON of `play --json` and Python's `play`, the CSV of
+/// What a round reports (docs/round.md): the JSON of `play --json` and Python's `play`, the CSV of
 /// every stroke, and the comparison of players over seeds and courses (`play --compare`, the
 /// "round of minigolf" section of `reproduce`). One flow for the CLI, Python and reproduce.
 #include <functional>

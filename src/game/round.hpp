@@ -1,5 +1,5 @@
 #pragma once
-/// Playing a round (docs/play.md): every hole of a course, stroke after stroke from where the
+/// Playing a round (docs/round.md): every hole of a course, stroke after stroke from where the
 /// ball lies, by one of three players:
 /// - robot: plans each stroke in its own model of the field (the field file, never the plant)
 ///   with the planner (game/planner.hpp), then hits with the arm (the full system, in the true
