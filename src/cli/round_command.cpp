@@ -110,7 +110,7 @@ void run_compare(const Args& a) {
 
 void add_round_command(CLI::App& app) {
   auto a = std::make_shared<Args>();
-  auto* cmd = app.add_subcommand("play", "Play a round of minigolf on a course (docs/play.md)");
+  auto* cmd = app.add_subcommand("play", "Play a round of minigolf on a course (docs/round.md)");
   cmd->add_option("--course", a->courses,
                   "Shipped course name or path to a course file (several, comma-separated, with "
                   "--compare)")

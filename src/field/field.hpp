@@ -72,4 +72,9 @@ std::vector<std::string> list_shipped_fields();
 /// Throws `InputError` unless a hole centred at `position` lies wholly inside the lane.
 void check_hole_position(const Field& field, std::array<double, 2> position);
 
+/// True if the segment a -> b passes within `clearance` [m] of an obstacle (sampled 1 cm apart):
+/// a ball rolling straight along it would meet one.
+bool line_blocked(const Field& field, std::array<double, 2> a, std::array<double, 2> b,
+                  double clearance);
+
 }  // namespace mg::field

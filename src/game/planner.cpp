@@ -183,20 +183,6 @@ std::vector<Imagined> imagine(const system::System& system, const LaneRegion& re
   return out;
 }
 
-bool line_blocked(const field::Field& field, std::array<double, 2> a, std::array<double, 2> b,
-                  double clearance) {
-  if (field.obstacles.empty()) return false;
-  const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
-  const int n = std::max(2, static_cast<int>(std::ceil(len / 0.01)));
-  for (int k = 0; k <= n; ++k) {
-    const double t = static_cast<double>(k) / n;
-    const std::array<double, 2> p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
-    for (const auto& o : field.obstacles)
-      if (o.distance(p) < clearance) return true;
-  }
-  return false;
-}
-
 double strokes_to_go(const field::Field& field, std::array<double, 2> rest, bool left_lane) {
   const auto& h = field.hole.position;
   const double d = std::hypot(h[0] - rest[0], h[1] - rest[1]);

@@ -96,9 +96,7 @@ std::vector<Imagined> imagine(const system::System& system, const LaneRegion& re
 /// Strokes-to-go heuristic V after a ball that did not sink stops at `rest` (see file comment).
 double strokes_to_go(const field::Field& field, std::array<double, 2> rest, bool left_lane);
 
-/// True if the segment a -> b passes within `clearance` [m] of an obstacle.
-bool line_blocked(const field::Field& field, std::array<double, 2> a, std::array<double, 2> b,
-                  double clearance);
+using field::line_blocked;
 
 /// One launch judged as plan_stroke judges its candidates (its neighbours on a fine grid at the
 /// scale of `error`): expected strokes to finish the hole and sink probability.

@@ -1,4 +1,4 @@
-// minigolf.play and minigolf.courses: a round of minigolf (game/, docs/play.md), the dict of
+// minigolf.play and minigolf.courses: a round of minigolf (game/, docs/round.md), the dict of
 // `minigolf play --json` through the same report code.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "core/error.hpp"
+#include "teacher/bank_shots.hpp"
 
 namespace mg::teacher {
 
@@ -34,67 +35,6 @@ struct Probe {
   double launch_angle = 0.0, launch_speed = 0.0, approach_speed = 0.0;
 };
 
-/// True if the ball's centre, rolling straight from a to b, comes within a ball radius of an
-/// obstacle.
-bool line_blocked(const field::Field& f, std::array<double, 2> a, std::array<double, 2> b) {
-  if (f.obstacles.empty()) return false;
-  const int n =
-      std::max(2, static_cast<int>(std::ceil(std::hypot(b[0] - a[0], b[1] - a[1]) / 0.01)));
-  for (int k = 0; k <= n; ++k) {
-    const double t = static_cast<double>(k) / n;
-    const std::array<double, 2> p{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])};
-    for (const auto& o : f.obstacles)
-      if (o.distance(p) < f.ball.radius) return true;
-  }
-  return false;
-}
-
-/// A bank shot off one border: the launch that aims at the hole's mirror image across the line
-/// the ball's centre bounces on (the border's face a ball radius into the lane).
-struct BankShot {
-  double angle = 0.0;         ///< [rad] launch direction
-  double launch_speed = 0.0;  ///< [m/s] prior: rolls both legs, loses the normal speed's share
-  double path_length = 0.0;   ///< [m]
-};
-
-/// The bank shots off the four borders whose two legs are clear of obstacles, shortest first.
-std::vector<BankShot> bank_shots(const field::Field& f, std::array<double, 2> hole,
-                                 double arrival) {
-  const auto& b = f.bounds;
-  const double r = f.ball.radius, e = f.borders.restitution;
-  const double a_roll = 5.0 / 7.0 * f.rolling_resistance * kGravity;
-  const std::array<double, 2> tee = f.tee;
-  std::vector<BankShot> out;
-  for (int side = 0; side < 4; ++side) {
-    const bool vertical = side < 2;  // x = const
-    const double line = side == 0   ? b[0] + r
-                        : side == 1 ? b[1] - r
-                        : side == 2 ? b[2] + r
-                                    : b[3] - r;
-    std::array<double, 2> image = hole;
-    image[vertical ? 0 : 1] = 2.0 * line - hole[vertical ? 0 : 1];
-    const int k = vertical ? 0 : 1;
-    const double denom = image[k] - tee[k];
-    if (std::abs(denom) < 1e-9) continue;
-    const double t = (line - tee[k]) / denom;
-    if (!(t > 0.0 && t < 1.0)) continue;
-    const std::array<double, 2> bounce{tee[0] + t * (image[0] - tee[0]),
-                                       tee[1] + t * (image[1] - tee[1])};
-    if (line_blocked(f, tee, bounce) || line_blocked(f, bounce, hole)) continue;
-    const double l1 = std::hypot(bounce[0] - tee[0], bounce[1] - tee[1]);
-    const double l2 = std::hypot(hole[0] - bounce[0], hole[1] - bounce[1]);
-    const double normal = std::abs(denom) / (l1 + l2);  // sine of the incidence on the line
-    const double keep = (1.0 - normal * normal) + e * e * normal * normal;
-    const double after = arrival * arrival + 2.0 * a_roll * l2;
-    const double v2 = after / std::max(keep, 0.05) + 2.0 * a_roll * l1;
-    out.push_back(
-        {std::atan2(image[1] - tee[1], image[0] - tee[0]), 7.0 / 5.0 * std::sqrt(v2), l1 + l2});
-  }
-  std::sort(out.begin(), out.end(),
-            [](const BankShot& x, const BankShot& y) { return x.path_length < y.path_length; });
-  return out;
-}
-
 /// The search state of one situation.
 class Search {
  public:
@@ -112,7 +52,7 @@ class Search {
     aim_ = prior.angle;
     prior_launch_speed_ = prior.speed;
     lateral_gain_ = -distance_;
-    if (line_blocked(f, f.tee, hole)) banks_ = bank_shots(f, hole, vt_);
+    if (field::line_blocked(f, f.tee, hole, f.ball.radius)) banks_ = bank_shots(f, hole, vt_);
     if (!banks_.empty()) {  // the shortest bank until a search tries the others
       aim_ = banks_.front().angle;
       distance_ = lateral_gain_ = banks_.front().path_length;

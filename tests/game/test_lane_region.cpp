@@ -31,7 +31,9 @@ TEST(LaneRegion, AnOpenLaneIsInPlayEverywhereAroundBlocks) {
   for (double x = -0.25; x < 2.69; x += 0.1)
     for (double y = -0.55; y < 0.59; y += 0.1) {
       const bool in_block = f.obstacles[0].distance({x, y}) < f.ball.radius;
-      if (!in_block) EXPECT_TRUE(r.contains({x, y})) << x << ", " << y;
+      if (!in_block) {
+        EXPECT_TRUE(r.contains({x, y})) << x << ", " << y;
+      }
     }
 }
 

@@ -96,8 +96,12 @@ TEST(Planner, TheBlockedLineIsPlayedRoundTheBlock) {
   // The plan's own prediction holds in the world it planned in.
   system::SystemData d(sys);
   const auto out = system::ball_putt(sys, d, f.hole.position, p.angle, p.speed, 0.0, f.tee);
-  if (p.sink_probability >= 0.99) EXPECT_TRUE(out.sunk);
-  if (!out.sunk) EXPECT_LT(strokes_to_go(f, out.rest_position, false), 2.0);  // a clear next putt
+  if (p.sink_probability >= 0.99) {
+    EXPECT_TRUE(out.sunk);
+  }
+  if (!out.sunk) {
+    EXPECT_LT(strokes_to_go(f, out.rest_position, false), 2.0);  // a clear next putt
+  }
 }
 
 TEST(Planner, AClubLaunchNextToAWallIsImaginedFromTheBall) {
