@@ -7,128 +7,130 @@
 #include "robot/wam_model.hpp"
 
 namespace mg::control {
+namespace {
 
-FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
-                                std::array<double, 2> hole, double angle, double speed,
-                                const FullPuttOptions& options, PuttScratch* scratch) {
-  const sim::World* ball_world = options.ball_world;
-  if (ball_world != nullptr) check_ball_world(world, *ball_world);
-  options.validate();
-  check_stance(world, model, options.stance);
-  std::unique_ptr<PuttScratch> local;
-  if (scratch == nullptr) {
-    local = std::make_unique<PuttScratch>();
-    scratch = local.get();
-  }
-  PuttScratch::Impl& mem = scratch->impl();
-  const SimIds& ids = mem.ids_for(world);
+/// What the phases of one putt share: its inputs, the scratch, and the start they agreed on.
+struct Putt {
+  const sim::World& world;
+  const ModuleModel& model;
+  mjData* d;
+  std::array<double, 2> hole;
+  double angle, speed;
+  const FullPuttOptions& options;
+  PuttScratch::Impl& mem;
+  const SimIds& ids;
+  bool own_scratch;  ///< the scratch lives for this call only (no approach cache then)
 
-  world.reset(d);
-  world.set_hole(d, hole);
-  const std::array<double, 2> ball_start = noisy_ball_start(world, options);
-  if (options.placement_noise > 0.0 || !options.stance.identity()) world.place_ball(d, ball_start);
-  robot::Vector7 rest;
-  for (int j = 0; j < 7; ++j) rest[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
-  const auto& cfg = model.config();
-  const bool valid_angle = std::isfinite(angle) && angle >= cfg.angle_min && angle <= cfg.angle_max;
-  const bool at_rest_start = options.rest_start == RestStart::kAtRestPose && valid_angle;
-  // Torque noise acts on the arm during the approach too: then it is simulated.
-  const bool kinematic = options.rest_start == RestStart::kKinematicApproach && valid_angle &&
-                         !(options.torque_noise > 0.0);
-  if (at_rest_start || kinematic) {
-    // The ball at rest in its contact, as after the approach; the arm at the rest pose.
-    const sim::World& settle_world = ball_world != nullptr ? *ball_world : world;
-    const sim::BallState* s = mem.find(settle_world.instance_id(), ball_start, hole);
-    if (s == nullptr) {
-      mjData* sd = ball_world != nullptr ? mem.data_for(*ball_world) : d;
-      mem.store(settle_world.instance_id(), ball_start, hole,
-                settled_ball(settle_world, sd, ball_world != nullptr ? nullptr : &ids.arm,
-                             ball_start, hole));
-      s = mem.find(settle_world.instance_id(), ball_start, hole);
-      if (ball_world == nullptr) {  // the settle ran in d
-        world.reset(d);
-        world.set_hole(d, hole);
-      }
-    }
-    world.set_ball_state(d, *s);
-    if (at_rest_start) rest = rest_joint_positions(model, angle);
-  }
-  robot::set_joint_positions(ids.arm, d, rest);
-  mj_forward(world.model(), d);
+  std::array<double, 2> ball_start{};
+  bool valid_angle = false, at_rest_start = false, kinematic = false;
+  bool plant_vision = false;  ///< the module's vision is late or off (options)
+};
 
-  FullPuttResult r;
-  r.ball_start = ball_start;
-  r.min_position_margin = 1e9;
-  CoreLoop run(world, ids, model, d);
-  // The plant's vision: late and off by this putt's error.
-  const bool plant_vision = options.perception_latency > 0.0 ||
-                            options.perceived_ball_offset[0] != 0.0 ||
-                            options.perceived_ball_offset[1] != 0.0;
-  perception::SimulatorPerception truth(world, d);
-  perception::DelayedPerception delayed(truth, options.perception_latency,
-                                        options.perceived_ball_offset);
-  perception::StancePerception from_stance(
-      plant_vision ? static_cast<perception::Perception&>(delayed) : truth, options.stance);
-  if (!options.stance.identity())
-    run.set_perception(&from_stance);
-  else if (plant_vision)
-    run.set_perception(&delayed);
-  TorqueNoise torque_noise(model, run, options);
-  if (torque_noise.enabled()) run.set_hooks(&torque_noise);
-  double t_module_hit = -1.0;  // [s] state the module measured when it saw the hit (-1: not yet)
-  const auto step = [&] {
+/// One physics step of the loop, noting when the module first saw the hit.
+struct Stepper {
+  CoreLoop& run;
+  mjData* d;
+  double t_module_hit = -1.0;  ///< [s] state the module measured when it saw the hit (-1: not yet)
+  void operator()() {
     const double t_state = d->time;
     run.step();
     if (t_module_hit < 0.0 && run.module().ball_hit) t_module_hit = t_state;
-  };
-  const double dt = world.model()->opt.timestep;
-  const int ball_dof = world.ids().ball_dof;
-
-  // Rest: go to the rest pose of this angle and settle.
-  if (!request_rest(model, run.module(), angle)) {
-    r.hit_refused = true;
-    r.timing = run.timing();
-    r.arm_steps = run.steps();
-    return r;
   }
-  const long settle_steps = std::lround(options.settle_timeout / dt);
-  const double min_rest_time = at_rest_start ? kAtRestSettleTime : 0.2;
-  bool settled = false;
-  long kinematic_steps = 0;  // steps not simulated here: kinematic approach or restored
-  if (kinematic) {
-    // The module's Rest motion with a plant that follows the reference exactly: its reference
-    // does not depend on the measurement in Rest, so it is that of a simulated approach.
-    const robot::ArmIds& arm = ids.arm;
-    while (!settled && run.steps() < settle_steps) {
-      const ModuleData& md = run.module();
-      robot::set_joint_positions(arm, d, md.q_ref);
-      for (int j = 0; j < 7; ++j) d->qvel[arm.dof[static_cast<std::size_t>(j)]] = md.qd_des[j];
-      const long before = run.steps();
-      run.tick_without_physics();
-      kinematic_steps += run.steps() - before;
-      track_ratios(model, ids, d, run.module(), r);
-      settled = md.state == ModuleState::kRest && md.at_rest_pose && md.time_in_state > 0.2;
+};
+
+/// Resets the world, places the ball (settled on its start when the approach is not simulated)
+/// and the arm (the default posture, or the rest pose of the angle).
+void place_ball_and_arm(Putt& p) {
+  const sim::World& world = p.world;
+  const FullPuttOptions& options = p.options;
+  const sim::World* ball_world = options.ball_world;
+  world.reset(p.d);
+  world.set_hole(p.d, p.hole);
+  p.ball_start = noisy_ball_start(world, options);
+  if (options.placement_noise > 0.0 || !options.stance.identity())
+    world.place_ball(p.d, p.ball_start);
+  robot::Vector7 rest;
+  for (int j = 0; j < 7; ++j) rest[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];
+  const auto& cfg = p.model.config();
+  p.valid_angle = std::isfinite(p.angle) && p.angle >= cfg.angle_min && p.angle <= cfg.angle_max;
+  p.at_rest_start = options.rest_start == RestStart::kAtRestPose && p.valid_angle;
+  // Torque noise acts on the arm during the approach too: then it is simulated.
+  p.kinematic = options.rest_start == RestStart::kKinematicApproach && p.valid_angle &&
+                !(options.torque_noise > 0.0);
+  if (p.at_rest_start || p.kinematic) {
+    // The ball at rest in its contact, as after the approach; the arm at the rest pose.
+    const sim::World& settle_world = ball_world != nullptr ? *ball_world : world;
+    const sim::BallState* s = p.mem.find(settle_world.instance_id(), p.ball_start, p.hole);
+    if (s == nullptr) {
+      mjData* sd = ball_world != nullptr ? p.mem.data_for(*ball_world) : p.d;
+      p.mem.store(settle_world.instance_id(), p.ball_start, p.hole,
+                  settled_ball(settle_world, sd, ball_world != nullptr ? nullptr : &p.ids.arm,
+                               p.ball_start, p.hole));
+      s = p.mem.find(settle_world.instance_id(), p.ball_start, p.hole);
+      if (ball_world == nullptr) {  // the settle ran in d
+        world.reset(p.d);
+        world.set_hole(p.d, p.hole);
+      }
     }
+    world.set_ball_state(p.d, *s);
+    if (p.at_rest_start) rest = rest_joint_positions(p.model, p.angle);
+  }
+  robot::set_joint_positions(p.ids.arm, p.d, rest);
+  mj_forward(world.model(), p.d);
+}
+
+/// The kinematic approach: the module's Rest motion with a plant that follows the reference
+/// exactly (its reference does not depend on the measurement in Rest, so it is that of a
+/// simulated approach). Returns whether the rest pose was reached; `kinematic_steps` counts the
+/// steps not simulated.
+bool approach_kinematically(const Putt& p, CoreLoop& run, FullPuttResult& r, long settle_steps,
+                            long& kinematic_steps) {
+  const robot::ArmIds& arm = p.ids.arm;
+  mjData* d = p.d;
+  bool settled = false;
+  while (!settled && run.steps() < settle_steps) {
     const ModuleData& md = run.module();
     robot::set_joint_positions(arm, d, md.q_ref);
     for (int j = 0; j < 7; ++j) d->qvel[arm.dof[static_cast<std::size_t>(j)]] = md.qd_des[j];
-    mj_forward(world.model(), d);
+    const long before = run.steps();
+    run.tick_without_physics();
+    kinematic_steps += run.steps() - before;
+    track_ratios(p.model, p.ids, d, run.module(), r);
+    settled = md.state == ModuleState::kRest && md.at_rest_pose && md.time_in_state > 0.2;
   }
+  const ModuleData& md = run.module();
+  robot::set_joint_positions(arm, d, md.q_ref);
+  for (int j = 0; j < 7; ++j) d->qvel[arm.dof[static_cast<std::size_t>(j)]] = md.qd_des[j];
+  mj_forward(p.world.model(), d);
+  return settled;
+}
+
+/// Brings the arm to the rest pose of the angle (kinematically, from the approach cache, or
+/// simulated) and keeps a simulated approach in the cache. Returns whether it got there.
+bool approach(const Putt& p, CoreLoop& run, Stepper& step, FullPuttResult& r,
+              long& kinematic_steps) {
+  const sim::World& world = p.world;
+  const FullPuttOptions& options = p.options;
+  const double dt = world.model()->opt.timestep;
+  const long settle_steps = std::lround(options.settle_timeout / dt);
+  const double min_rest_time = p.at_rest_start ? kAtRestSettleTime : 0.2;
+  bool settled = false;
+  if (p.kinematic) settled = approach_kinematically(p, run, r, settle_steps, kinematic_steps);
   // Approach cache (kApproach, no noise): a hit restores the state at the hit request.
-  const bool cacheable = options.rest_start == RestStart::kApproach && valid_angle &&
-                         !(options.torque_noise > 0.0) && !plant_vision && local == nullptr;
+  const bool cacheable = options.rest_start == RestStart::kApproach && p.valid_angle &&
+                         !(options.torque_noise > 0.0) && !p.plant_vision && !p.own_scratch;
   ApproachKey key;
   PuttScratch::Impl::AtRest* cached = nullptr;
   if (cacheable) {
-    key = approach_key(model);
-    for (auto& e : mem.at_rest)
-      if (e.world == world.instance_id() && e.model == &model && e.angle == angle &&
-          e.settle_timeout == options.settle_timeout && e.start == ball_start && e.hole == hole &&
-          e.key == key)
+    key = approach_key(p.model);
+    for (auto& e : p.mem.at_rest)
+      if (e.world == world.instance_id() && e.model == &p.model && e.angle == p.angle &&
+          e.settle_timeout == options.settle_timeout && e.start == p.ball_start &&
+          e.hole == p.hole && e.key == key)
         cached = &e;
   }
   if (cached != nullptr) {
-    mj_copyData(d, world.model(), cached->data.get());
+    mj_copyData(p.d, world.model(), cached->data.get());
     run.restore(*cached->module, cached->steps);
     r = cached->result;
     kinematic_steps = cached->steps;
@@ -136,7 +138,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   }
   for (long k = 0; k < settle_steps && !settled; ++k) {
     step();
-    track_ratios(model, ids, d, run.module(), r);
+    track_ratios(p.model, p.ids, p.d, run.module(), r);
     // Ask once the module says the rest pose is reached (on a core-tick boundary).
     if (run.module().state == ModuleState::kRest && run.module().at_rest_pose && k % 2 == 1 &&
         run.module().time_in_state > min_rest_time) {
@@ -144,52 +146,57 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
       break;
     }
   }
-  r.rest_time = d->time;
+  r.rest_time = p.d->time;
   if (cacheable && settled && cached == nullptr) {
-    PuttScratch::Impl::AtRest& e = mem.at_rest_slot();
+    PuttScratch::Impl::AtRest& e = p.mem.at_rest_slot();
     if (!e.data || e.world != world.instance_id()) e.data = world.make_data();
-    if (!e.module || e.model != &model) e.module = std::make_unique<ModuleData>(model);
+    if (!e.module || e.model != &p.model) e.module = std::make_unique<ModuleData>(p.model);
     e.world = world.instance_id();
-    e.model = &model;
+    e.model = &p.model;
     e.key = key;
-    e.angle = angle;
+    e.angle = p.angle;
     e.settle_timeout = options.settle_timeout;
-    e.start = ball_start;
-    e.hole = hole;
-    mj_copyData(e.data.get(), world.model(), d);
+    e.start = p.ball_start;
+    e.hole = p.hole;
+    mj_copyData(e.data.get(), world.model(), p.d);
     *e.module = run.module();
     e.steps = run.steps();
     e.result = r;
   }
-  if (!settled) {
-    r.timing = run.timing();
-    r.arm_steps = run.steps() - kinematic_steps;
-    return r;
-  }
+  return settled;
+}
 
-  // Hit (the arm of a plant reaches club_speed_scale of what it is asked for).
+/// Asks for the hit and steps until the club meets the ball (or the hit is refused or times
+/// out). Returns whether it met; `club_velocity` is the face velocity at impact, `t_request` the
+/// time of the (last) request.
+bool hit(const Putt& p, CoreLoop& run, Stepper& step, FullPuttResult& r,
+         Eigen::Vector3d& club_velocity, double& t_request) {
+  const FullPuttOptions& options = p.options;
+  const auto& cfg = p.model.config();
+  mjData* d = p.d;
+  // The arm of a plant reaches club_speed_scale of what it is asked for.
   const double arm_speed =
       options.club_speed_scale == 1.0
-          ? speed
-          : std::clamp(speed * options.club_speed_scale, cfg.speed_min, cfg.speed_max);
-  const bool request_valid = request_hit(model, run.module(), angle, arm_speed);
-  const long hit_steps = std::lround(options.hit_timeout / dt);
-  double t_request = d->time;
+          ? p.speed
+          : std::clamp(p.speed * options.club_speed_scale, cfg.speed_min, cfg.speed_max);
+  const bool request_valid = request_hit(p.model, run.module(), p.angle, arm_speed);
+  const long hit_steps = std::lround(options.hit_timeout / p.world.model()->opt.timestep);
+  t_request = d->time;
   bool contact = false;
   // The face velocity before the step in which the club meets the ball: the impact velocity
   // (after that step the contact spring has already slowed the club).
   const auto face_velocity = [&] {
     Eigen::Isometry3d pose;
     robot::Matrix67 jac;
-    const robot::Vector7 q = robot::joint_positions(ids.arm, d);
-    robot::dh_club_jacobian(model.arm(), q, pose, jac);
-    return Eigen::Vector3d(jac.topRows<3>() * robot::joint_velocities(ids.arm, d));
+    const robot::Vector7 q = robot::joint_positions(p.ids.arm, d);
+    robot::dh_club_jacobian(p.model.arm(), q, pose, jac);
+    return Eigen::Vector3d(jac.topRows<3>() * robot::joint_velocities(p.ids.arm, d));
   };
-  Eigen::Vector3d club_velocity = Eigen::Vector3d::Zero();
+  const int ball_dof = p.world.ids().ball_dof;
   for (long k = 0; k < hit_steps && !contact; ++k) {
     club_velocity = face_velocity();
     step();
-    track_ratios(model, ids, d, run.module(), r);
+    track_ratios(p.model, p.ids, d, run.module(), r);
     if (k == 2 && run.module().state != ModuleState::kHitting) {
       // Execution noise only: the torque disturbance makes the arm jitter around the
       // stationarity threshold, so a valid request can be refused as "not at rest" at the next
@@ -198,12 +205,12 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
         bool again = false;
         while (!again && d->time < options.settle_timeout) {
           step();
-          track_ratios(model, ids, d, run.module(), r);
+          track_ratios(p.model, p.ids, d, run.module(), r);
           again = run.module().state == ModuleState::kRest && run.module().at_rest_pose &&
                   run.steps() % 2 == 0;
         }
         if (again) {
-          request_hit(model, run.module(), angle, arm_speed);
+          request_hit(p.model, run.module(), p.angle, arm_speed);
           r.rest_time = t_request = d->time;
           k = -1;
           continue;
@@ -216,29 +223,33 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     const double ball_speed = std::sqrt(bv[0] * bv[0] + bv[1] * bv[1] + bv[2] * bv[2]);
     for (int i = 0; i < d->ncon && !contact; ++i) {
       const mjContact& c = d->contact[i];
-      contact = (c.geom1 == ids.club_geom && c.geom2 == ids.ball_geom) ||
-                (c.geom2 == ids.club_geom && c.geom1 == ids.ball_geom);
+      contact = (c.geom1 == p.ids.club_geom && c.geom2 == p.ids.ball_geom) ||
+                (c.geom2 == p.ids.club_geom && c.geom1 == p.ids.ball_geom);
     }
-    contact = contact || ball_speed > model.config().ball_moving_speed;
+    contact = contact || ball_speed > cfg.ball_moving_speed;
   }
-  if (!contact) {
-    r.timing = run.timing();
-    r.arm_steps = run.steps() - kinematic_steps;
-    return r;
-  }
-  r.hit = true;
-  r.hit_time = d->time - t_request;
-  const double t_first_contact = d->time;
-  r.club = {std::atan2(club_velocity.y(), club_velocity.x()), club_velocity.norm()};
+  return contact;
+}
 
-  // The ball rolls; the module brakes and idles meanwhile.
+/// The ball rolls from the first contact until decided; the module brakes and idles meanwhile.
+/// Once the club is clear, the roll goes on in the ball world (hand-off), and back in the arm
+/// world should the ball come back towards the club. Fills the outcome, launch and hand-off.
+void roll(const Putt& p, CoreLoop& run, Stepper& step, FullPuttResult& r, long kinematic_steps) {
+  const sim::World& world = p.world;
+  const sim::World* ball_world = p.options.ball_world;
+  const FullPuttOptions& options = p.options;
+  const auto& cfg = p.model.config();
+  mjData* d = p.d;
+  const double dt = world.model()->opt.timestep;
+  const int ball_dof = world.ids().ball_dof;
+  const double t_first_contact = d->time;
   sim::OutcomeTracker tracker(world, d, options.rules);
   const long launch_step = std::lround(options.launch_delay / dt);
   const long max_steps = std::lround(options.max_duration / dt);
   bool decided = false;
   const double t_contact = d->time;
   const double ball_radius = world.field().ball.radius;
-  const double club_radius = world.model()->geom_rbound[ids.club_geom];
+  const double club_radius = world.model()->geom_rbound[p.ids.club_geom];
   bool may_hand_off = ball_world != nullptr;
   double came_back_at = -1.0;   // [s] time of the last fallback: no new hand-off until past it
   const mjData* ball_data = d;  // where the ball's final state is
@@ -255,7 +266,7 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   long k = 1;
   for (; k <= max_steps && !decided; ++k) {
     step();
-    track_ratios(model, ids, d, run.module(), r);
+    track_ratios(p.model, p.ids, d, run.module(), r);
     if (!launch_turned && !r.touching_ball) {
       turn_ball(world, d, options.launch_angle_bias);
       launch_turned = true;
@@ -280,15 +291,15 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
                               : 0.0) +
                          kClubReachMargin;
     const double fallback_radius = reach + club_radius + ball_radius;
-    const Eigen::Vector3d club(d->geom_xpos + 3 * ids.club_geom);
+    const Eigen::Vector3d club(d->geom_xpos + 3 * p.ids.club_geom);
     const Eigen::Vector3d ball(d->qpos + world.ids().ball_qpos);
     if ((ball - club).norm() < fallback_radius + kHandoffHysteresis) continue;
 
     // Hand-off: the roll goes on in the ball world; `d` and the tracker stay as they are, to go
     // on from here should the ball come back towards the club.
-    mjData* bd = mem.data_for(*ball_world);
+    mjData* bd = p.mem.data_for(*ball_world);
     ball_world->reset(bd);
-    ball_world->set_hole(bd, hole);
+    ball_world->set_hole(bd, p.hole);
     ball_world->set_ball_state(bd, world.ball_state(d));
     const sim::OutcomeTracker tracker_at_handoff = tracker;
     const std::size_t samples_at_handoff = trajectory.size();
@@ -327,12 +338,69 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     world.set_ball_state(d, ball_world->ball_state(ball_data));
     mj_forward(world.model(), d);
   }
-  if (t_module_hit >= 0.0) r.hit_detection_lag = t_module_hit - t_first_contact;
+  if (step.t_module_hit >= 0.0) r.hit_detection_lag = step.t_module_hit - t_first_contact;
   r.outcome = tracker.outcome();
   r.outcome.trajectory = std::move(trajectory);
   // The ball's time starts at the first contact (ball-only putts start at the launch).
   r.outcome.duration = ball_data->time - t_contact;
   r.outcome.steps = static_cast<int>(k - 1);
+}
+
+}  // namespace
+
+FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
+                                std::array<double, 2> hole, double angle, double speed,
+                                const FullPuttOptions& options, PuttScratch* scratch) {
+  if (options.ball_world != nullptr) check_ball_world(world, *options.ball_world);
+  options.validate();
+  check_stance(world, model, options.stance);
+  std::unique_ptr<PuttScratch> local;
+  if (scratch == nullptr) {
+    local = std::make_unique<PuttScratch>();
+    scratch = local.get();
+  }
+  PuttScratch::Impl& mem = scratch->impl();
+  Putt p{world, model, d, hole, angle, speed, options, mem, mem.ids_for(world), local != nullptr};
+  p.plant_vision = options.perception_latency > 0.0 || options.perceived_ball_offset[0] != 0.0 ||
+                   options.perceived_ball_offset[1] != 0.0;
+  place_ball_and_arm(p);
+
+  FullPuttResult r;
+  r.ball_start = p.ball_start;
+  r.min_position_margin = 1e9;
+  CoreLoop run(world, p.ids, model, d);
+  // The plant's vision: late and off by this putt's error.
+  perception::SimulatorPerception truth(world, d);
+  perception::DelayedPerception delayed(truth, options.perception_latency,
+                                        options.perceived_ball_offset);
+  perception::StancePerception from_stance(
+      p.plant_vision ? static_cast<perception::Perception&>(delayed) : truth, options.stance);
+  if (!options.stance.identity())
+    run.set_perception(&from_stance);
+  else if (p.plant_vision)
+    run.set_perception(&delayed);
+  TorqueNoise torque_noise(model, run, options);
+  if (torque_noise.enabled()) run.set_hooks(&torque_noise);
+  Stepper step{run, d};
+  long kinematic_steps = 0;  // steps not simulated here: kinematic approach or restored
+  const auto stopped = [&] {
+    r.timing = run.timing();
+    r.arm_steps = run.steps() - kinematic_steps;
+    return r;
+  };
+
+  if (!request_rest(model, run.module(), angle)) {
+    r.hit_refused = true;
+    return stopped();
+  }
+  if (!approach(p, run, step, r, kinematic_steps)) return stopped();
+  Eigen::Vector3d club_velocity = Eigen::Vector3d::Zero();
+  double t_request = 0.0;
+  if (!hit(p, run, step, r, club_velocity, t_request)) return stopped();
+  r.hit = true;
+  r.hit_time = d->time - t_request;
+  r.club = {std::atan2(club_velocity.y(), club_velocity.x()), club_velocity.norm()};
+  roll(p, run, step, r, kinematic_steps);
   r.timing = run.timing();
   return r;
 }

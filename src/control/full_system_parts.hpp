@@ -86,7 +86,7 @@ void turn_ball(const sim::World& world, mjData* d, double angle);
 // (the rest speeds and the IK options derive from it) and the hitting point x*. A replaced model
 // at the same address does not hit the cache.
 struct ApproachKey {
-  ModuleConfig config;
+  ControllerConfig config;
   Eigen::Vector3d x_star = Eigen::Vector3d::Zero();
   bool operator==(const ApproachKey&) const = default;
 };

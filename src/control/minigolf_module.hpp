@@ -67,10 +67,10 @@ class ModuleModel {
   /// The arm, the hitting model, the config and the ball's radius [m] (hit detection); in the
   /// simulator control::make_module_model (control/mujoco_arm.hpp) reads the arm and the radius
   /// from the compiled world. Validates; throws mg::InputError.
-  ModuleModel(robot::ArmModel arm, ds::HittingModel hitting, const ModuleConfig& config,
+  ModuleModel(robot::ArmModel arm, ds::HittingModel hitting, const ControllerConfig& config,
               double ball_radius);
 
-  const ModuleConfig& config() const { return config_; }
+  const ControllerConfig& config() const { return config_; }
   const robot::ArmModel& arm() const { return arm_; }
   const ds::HittingModel& hitting() const { return hitting_; }
   const robot::IkOptions& ik() const { return ik_; }
@@ -88,7 +88,7 @@ class ModuleModel {
   double rest_turn_rate() const { return rest_turn_rate_; }
 
  private:
-  ModuleConfig config_;
+  ControllerConfig config_;
   robot::ArmModel arm_;
   ds::HittingModel hitting_;
   robot::IkOptions ik_;

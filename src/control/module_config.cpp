@@ -2,7 +2,7 @@
 
 #include <cmath>
 #include <fstream>
-#include <set>
+#include <map>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -36,10 +36,7 @@ void require_finite_positive(double v, const char* field) {
 
 }  // namespace
 
-void ModuleConfig::validate() const {
-  if (field.empty()) throw InputError("module config: field: expected a name or path, got ''");
-  if (hitting_model.empty())
-    throw InputError("module config: hitting_model: expected a path, got ''");
+void ControllerConfig::validate() const {
   require(std::isfinite(core_rate) && core_rate >= 50.0 && core_rate <= 1000.0, "core_rate",
           "50..1000 Hz", core_rate);
   // Physics steps are 1 ms: the core period must be a whole number of steps.
@@ -98,8 +95,17 @@ void ModuleConfig::validate() const {
           "perception_max_age", "one core period..5 s", perception_max_age);
   require(std::isfinite(ball_tolerance) && ball_tolerance > 0.0 && ball_tolerance <= 0.2,
           "ball_tolerance", "0..0.2 m", ball_tolerance);
+}
+
+void SessionConfig::validate() const {
+  if (field.empty()) throw InputError("module config: field: expected a name or path, got ''");
+  if (hitting_model.empty())
+    throw InputError("module config: hitting_model: expected a path, got ''");
   require(overrun_streak_limit >= 1 && overrun_streak_limit <= 10000, "overrun_streak_limit",
           "1..10000 ticks", overrun_streak_limit);
+}
+
+void VisionConfig::validate() const {
   require(vision_port >= 0 && vision_port <= 65535, "vision_port", "0..65535 (0: any free port)",
           vision_port);
   require(std::isfinite(vision_sim_rate) && vision_sim_rate >= 1.0 && vision_sim_rate <= 1000.0,
@@ -112,6 +118,12 @@ void ModuleConfig::validate() const {
   require(
       std::isfinite(vision_sim_dropout) && vision_sim_dropout >= 0.0 && vision_sim_dropout <= 1.0,
       "vision_sim_dropout", "0..1", vision_sim_dropout);
+}
+
+void ModuleConfig::validate() const {
+  ControllerConfig::validate();
+  SessionConfig::validate();
+  VisionConfig::validate();
 }
 
 namespace {
@@ -128,6 +140,136 @@ std::array<double, 7> read_gains(const YAML::Node& n, const char* field) {
   return g;
 }
 
+/// One key of the file: the part it belongs to and how it is read.
+struct Key {
+  const char* part;  ///< "controller" | "session" | "vision"
+  void (*read)(ModuleConfig&, const YAML::Node&);
+};
+
+#define MG_NUMBER(name)                                                                   \
+  {                                                                                       \
+#name, {                                                                              \
+      "controller", [](ModuleConfig& c, const YAML::Node& v) { c.name = v.as<double>(); } \
+    }                                                                                     \
+  }
+
+const std::map<std::string, Key>& keys() {
+  static const std::map<std::string, Key> table{
+      {"mode",
+       {"controller",
+        [](ModuleConfig& c, const YAML::Node& v) {
+          c.mode = parse_module_mode(v.as<std::string>());
+        }}},
+      MG_NUMBER(core_rate),
+      {"robot_update_divider",
+       {"controller",
+        [](ModuleConfig& c, const YAML::Node& v) { c.robot_update_divider = v.as<int>(); }}},
+      {"kp",
+       {"controller", [](ModuleConfig& c, const YAML::Node& v) { c.kp = read_gains(v, "kp"); }}},
+      {"ki",
+       {"controller", [](ModuleConfig& c, const YAML::Node& v) { c.ki = read_gains(v, "ki"); }}},
+      {"kd",
+       {"controller", [](ModuleConfig& c, const YAML::Node& v) { c.kd = read_gains(v, "kd"); }}},
+      MG_NUMBER(integral_limit),
+      {"fir_length",
+       {"controller", [](ModuleConfig& c, const YAML::Node& v) { c.fir_length = v.as<int>(); }}},
+      MG_NUMBER(angle_min),
+      MG_NUMBER(angle_max),
+      MG_NUMBER(speed_min),
+      MG_NUMBER(speed_max),
+      MG_NUMBER(arm_speed_cap),
+      MG_NUMBER(arm_speed_cap_negative),
+      MG_NUMBER(negative_cap_angle),
+      {"rest_offset",
+       {"controller",
+        [](ModuleConfig& c, const YAML::Node& v) {
+          if (!v.IsSequence() || v.size() != 3)
+            throw InputError("rest_offset: expected a list of 3");
+          for (std::size_t i = 0; i < 3; ++i) c.rest_offset[i] = v[i].as<double>();
+        }}},
+      MG_NUMBER(club_face_offset),
+      MG_NUMBER(rest_speed),
+      MG_NUMBER(rest_turn_rate),
+      MG_NUMBER(rest_tolerance),
+      MG_NUMBER(rest_heading_tolerance),
+      MG_NUMBER(brake_lift_height),
+      MG_NUMBER(brake_time),
+      MG_NUMBER(stationary_threshold),
+      MG_NUMBER(ball_moving_speed),
+      MG_NUMBER(passed_distance),
+      MG_NUMBER(ball_moved_distance),
+      MG_NUMBER(max_hit_duration),
+      MG_NUMBER(hit_ramp_time),
+      MG_NUMBER(reference_leash),
+      MG_NUMBER(velocity_fault_factor),
+      MG_NUMBER(perception_max_age),
+      MG_NUMBER(ball_tolerance),
+      {"field",
+       {"session", [](ModuleConfig& c, const YAML::Node& v) { c.field = v.as<std::string>(); }}},
+      {"hitting_model",
+       {"session",
+        [](ModuleConfig& c, const YAML::Node& v) { c.hitting_model = v.as<std::string>(); }}},
+      {"params_model",
+       {"session",
+        [](ModuleConfig& c, const YAML::Node& v) { c.params_model = v.as<std::string>(); }}},
+      {"record",
+       {"session", [](ModuleConfig& c, const YAML::Node& v) { c.record = v.as<std::string>(); }}},
+      {"overrun_streak_limit",
+       {"session",
+        [](ModuleConfig& c, const YAML::Node& v) { c.overrun_streak_limit = v.as<int>(); }}},
+      {"vision_address",
+       {"vision",
+        [](ModuleConfig& c, const YAML::Node& v) { c.vision_address = v.as<std::string>(); }}},
+      {"vision_port",
+       {"vision", [](ModuleConfig& c, const YAML::Node& v) { c.vision_port = v.as<int>(); }}},
+      {"vision_sim_rate",
+       {"vision",
+        [](ModuleConfig& c, const YAML::Node& v) { c.vision_sim_rate = v.as<double>(); }}},
+      {"vision_sim_noise",
+       {"vision",
+        [](ModuleConfig& c, const YAML::Node& v) { c.vision_sim_noise = v.as<double>(); }}},
+      {"vision_sim_latency",
+       {"vision",
+        [](ModuleConfig& c, const YAML::Node& v) { c.vision_sim_latency = v.as<double>(); }}},
+      {"vision_sim_dropout",
+       {"vision",
+        [](ModuleConfig& c, const YAML::Node& v) { c.vision_sim_dropout = v.as<double>(); }}},
+  };
+  return table;
+}
+
+#undef MG_NUMBER
+
+/// Reads the keys of one mapping: the file's top level (`part` empty: any key, or a group) or
+/// one group (`part` names it: only its keys).
+void read_keys(ModuleConfig& c, const YAML::Node& map, const std::string& part,
+               const std::string& source) {
+  std::string key;
+  try {
+    for (const auto& kv : map) {
+      key = kv.first.as<std::string>();
+      if (part.empty() && (key == "controller" || key == "session" || key == "vision")) {
+        if (!kv.second.IsMap())
+          throw InputError(fmt::format("{}: {}: expected a mapping of keys", source, key));
+        read_keys(c, kv.second, key, source);
+        continue;
+      }
+      const auto it = keys().find(key);
+      if (it == keys().end()) throw InputError(fmt::format("{}: unknown key '{}'", source, key));
+      if (!part.empty() && part != it->second.part)
+        throw InputError(
+            fmt::format("{}: {}: '{}' belongs under '{}'", source, part, key, it->second.part));
+      try {
+        it->second.read(c, kv.second);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("{}: {}", source, e.what()));
+      }
+    }
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}: {}: wrong type: {}", source, key, e.what()));
+  }
+}
+
 }  // namespace
 
 ModuleConfig parse_module_config(const std::string& yaml_text, const std::string& source) {
@@ -140,151 +282,7 @@ ModuleConfig parse_module_config(const std::string& yaml_text, const std::string
   }
   if (root.IsNull()) return c;
   if (!root.IsMap()) throw InputError(fmt::format("{}: expected a YAML mapping", source));
-  static const std::set<std::string> known{"field",
-                                           "hitting_model",
-                                           "mode",
-                                           "core_rate",
-                                           "robot_update_divider",
-                                           "kp",
-                                           "ki",
-                                           "kd",
-                                           "integral_limit",
-                                           "fir_length",
-                                           "angle_min",
-                                           "angle_max",
-                                           "speed_min",
-                                           "speed_max",
-                                           "arm_speed_cap",
-                                           "arm_speed_cap_negative",
-                                           "negative_cap_angle",
-                                           "rest_offset",
-                                           "club_face_offset",
-                                           "rest_speed",
-                                           "rest_turn_rate",
-                                           "rest_tolerance",
-                                           "rest_heading_tolerance",
-                                           "brake_lift_height",
-                                           "brake_time",
-                                           "stationary_threshold",
-                                           "ball_moving_speed",
-                                           "passed_distance",
-                                           "ball_moved_distance",
-                                           "max_hit_duration",
-                                           "hit_ramp_time",
-                                           "reference_leash",
-                                           "velocity_fault_factor",
-                                           "params_model",
-                                           "record",
-                                           "perception_max_age",
-                                           "ball_tolerance",
-                                           "overrun_streak_limit",
-                                           "vision_address",
-                                           "vision_port",
-                                           "vision_sim_rate",
-                                           "vision_sim_noise",
-                                           "vision_sim_latency",
-                                           "vision_sim_dropout"};
-  std::string key;
-  try {
-    for (const auto& kv : root) {
-      key = kv.first.as<std::string>();
-      if (!known.count(key)) throw InputError(fmt::format("{}: unknown key '{}'", source, key));
-      const YAML::Node& v = kv.second;
-      auto num = [&](double& out) { out = v.as<double>(); };
-      if (key == "field")
-        c.field = v.as<std::string>();
-      else if (key == "hitting_model")
-        c.hitting_model = v.as<std::string>();
-      else if (key == "mode")
-        c.mode = parse_module_mode(v.as<std::string>());
-      else if (key == "core_rate")
-        num(c.core_rate);
-      else if (key == "robot_update_divider")
-        c.robot_update_divider = v.as<int>();
-      else if (key == "kp")
-        c.kp = read_gains(v, "kp");
-      else if (key == "ki")
-        c.ki = read_gains(v, "ki");
-      else if (key == "kd")
-        c.kd = read_gains(v, "kd");
-      else if (key == "integral_limit")
-        num(c.integral_limit);
-      else if (key == "fir_length")
-        c.fir_length = v.as<int>();
-      else if (key == "angle_min")
-        num(c.angle_min);
-      else if (key == "angle_max")
-        num(c.angle_max);
-      else if (key == "speed_min")
-        num(c.speed_min);
-      else if (key == "speed_max")
-        num(c.speed_max);
-      else if (key == "arm_speed_cap")
-        num(c.arm_speed_cap);
-      else if (key == "arm_speed_cap_negative")
-        num(c.arm_speed_cap_negative);
-      else if (key == "negative_cap_angle")
-        num(c.negative_cap_angle);
-      else if (key == "rest_offset") {
-        if (!v.IsSequence() || v.size() != 3)
-          throw InputError(fmt::format("{}: rest_offset: expected a list of 3", source));
-        for (std::size_t i = 0; i < 3; ++i) c.rest_offset[i] = v[i].as<double>();
-      } else if (key == "club_face_offset")
-        num(c.club_face_offset);
-      else if (key == "rest_speed")
-        num(c.rest_speed);
-      else if (key == "rest_turn_rate")
-        num(c.rest_turn_rate);
-      else if (key == "rest_tolerance")
-        num(c.rest_tolerance);
-      else if (key == "rest_heading_tolerance")
-        num(c.rest_heading_tolerance);
-      else if (key == "brake_lift_height")
-        num(c.brake_lift_height);
-      else if (key == "brake_time")
-        num(c.brake_time);
-      else if (key == "stationary_threshold")
-        num(c.stationary_threshold);
-      else if (key == "ball_moving_speed")
-        num(c.ball_moving_speed);
-      else if (key == "passed_distance")
-        num(c.passed_distance);
-      else if (key == "ball_moved_distance")
-        num(c.ball_moved_distance);
-      else if (key == "max_hit_duration")
-        num(c.max_hit_duration);
-      else if (key == "hit_ramp_time")
-        num(c.hit_ramp_time);
-      else if (key == "reference_leash")
-        num(c.reference_leash);
-      else if (key == "velocity_fault_factor")
-        num(c.velocity_fault_factor);
-      else if (key == "params_model")
-        c.params_model = v.as<std::string>();
-      else if (key == "record")
-        c.record = v.as<std::string>();
-      else if (key == "perception_max_age")
-        num(c.perception_max_age);
-      else if (key == "ball_tolerance")
-        num(c.ball_tolerance);
-      else if (key == "overrun_streak_limit")
-        c.overrun_streak_limit = v.as<int>();
-      else if (key == "vision_address")
-        c.vision_address = v.as<std::string>();
-      else if (key == "vision_port")
-        c.vision_port = v.as<int>();
-      else if (key == "vision_sim_rate")
-        num(c.vision_sim_rate);
-      else if (key == "vision_sim_noise")
-        num(c.vision_sim_noise);
-      else if (key == "vision_sim_latency")
-        num(c.vision_sim_latency);
-      else if (key == "vision_sim_dropout")
-        num(c.vision_sim_dropout);
-    }
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}: {}: wrong type: {}", source, key, e.what()));
-  }
+  read_keys(c, root, "", source);
   c.validate();
   return c;
 }

@@ -16,9 +16,10 @@ enum class ModuleMode {
 ModuleMode parse_module_mode(const std::string& name);  ///< "simulator" | "normal"; InputError
 std::string to_string(ModuleMode mode);
 
-struct ModuleConfig {
-  std::string field = "flat";                                      ///< shipped field name or path
-  std::string hitting_model = "data/models/hitting-default.json";  ///< hitting DS model file
+/// What the 500 Hz controller (minigolf_module, mujoco_arm) reads: rates, gains, the hit
+/// envelope, the DS's rest and brake motions, hit and fault detection. It names no file, address
+/// or thread, so a controller built from it runs the same behind any session or plant.
+struct ControllerConfig {
   ModuleMode mode = ModuleMode::kSimulator;
 
   double core_rate = 500.0;  ///< [Hz] core update rate (physics runs at 1 kHz: 2 steps per tick)
@@ -79,18 +80,38 @@ struct ModuleConfig {
   /// Faults: measured joint speed above this fraction of its limit, or a joint outside its range.
   double velocity_fault_factor = 1.5;
 
+  /// [s] perception older than this is stale: no hit starts, a running hit brakes (lost ball).
+  double perception_max_age = 0.2;
+  /// [m] the perceived ball must lie this close (horizontally) to the hitting point to hit.
+  double ball_tolerance = 0.03;
+
+  /// Throws mg::InputError naming the first bad field ("expected X, got Y").
+  void validate() const;
+  /// [s] core period.
+  double core_period() const { return 1.0 / core_rate; }
+  /// Every field equal (what the approach cache keys on).
+  bool operator==(const ControllerConfig&) const = default;
+};
+
+/// What a session (console, putt harness) needs around the controller: the world it loads, the
+/// models it reads, where it records, and when the real-time loop gives up.
+struct SessionConfig {
+  std::string field = "flat";                                      ///< shipped field name or path
+  std::string hitting_model = "data/models/hitting-default.json";  ///< hitting DS model file
   /// Parameter model (`minigolf train` JSON) for the console's `auto`; empty: none loaded.
   std::string params_model;
   /// CSV file the console records to from the start (`record on FILE` later); empty: off.
   std::string record;
 
-  /// [s] perception older than this is stale: no hit starts, a running hit brakes (lost ball).
-  double perception_max_age = 0.2;
-  /// [m] the perceived ball must lie this close (horizontally) to the hitting point to hit.
-  double ball_tolerance = 0.03;
   /// Real-time mode: this many core ticks in a row that miss their deadline are a fault.
   int overrun_streak_limit = 10;
 
+  void validate() const;  ///< as ControllerConfig::validate
+  bool operator==(const SessionConfig&) const = default;
+};
+
+/// The vision feed (normal mode) and the console's built-in vision simulator.
+struct VisionConfig {
   /// Normal mode: UDP address and port the vision feed listens on (0: any free port, printed).
   /// 127.0.0.1 takes only this machine's senders; a vision system elsewhere needs 0.0.0.0.
   std::string vision_address = "127.0.0.1";
@@ -102,16 +123,22 @@ struct ModuleConfig {
   double vision_sim_latency = 0.02;  ///< [s] capture to send
   double vision_sim_dropout = 0.0;   ///< probability a message is not sent
 
-  /// Throws mg::InputError naming the first bad field ("expected X, got Y").
-  void validate() const;
-  /// [s] core period.
-  double core_period() const { return 1.0 / core_rate; }
-  /// Every field equal (what a cache of results keys on).
+  void validate() const;  ///< as ControllerConfig::validate
+  bool operator==(const VisionConfig&) const = default;
+};
+
+/// The module's whole configuration, one YAML file: the three parts above. Each layer takes only
+/// its part (the controller a `const ControllerConfig&`); the parts are bases, not members, so the
+/// file's flat keys read the same in code (`config.kp`, `config.vision_port`).
+struct ModuleConfig : ControllerConfig, SessionConfig, VisionConfig {
+  void validate() const;  ///< every part
   bool operator==(const ModuleConfig&) const = default;
 };
 
-/// Reads a YAML file; missing keys keep their defaults, unknown keys are an error. Gains may be a
-/// scalar (all joints) or a list of 7. Throws InputError/IoError; the result is validated.
+/// Reads a YAML file; missing keys keep their defaults, unknown keys are an error. Keys are flat
+/// or grouped under `controller:`, `session:` and `vision:` (a key in the wrong group is an
+/// error). Gains may be a scalar (all joints) or a list of 7. Throws InputError/IoError; the result
+/// is validated.
 ModuleConfig load_module_config(const std::filesystem::path& path);
 /// The same from YAML text (`source` names it in messages).
 ModuleConfig parse_module_config(const std::string& yaml_text, const std::string& source);

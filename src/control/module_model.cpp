@@ -28,8 +28,8 @@ Vector7 fir_step(FirFilter& f, const Vector7& input) {
   return f.sum / static_cast<double>(f.taps);
 }
 
-ModuleModel::ModuleModel(robot::ArmModel arm, ds::HittingModel hitting, const ModuleConfig& config,
-                         double ball_radius)
+ModuleModel::ModuleModel(robot::ArmModel arm, ds::HittingModel hitting,
+                         const ControllerConfig& config, double ball_radius)
     : config_(config), arm_(std::move(arm)), hitting_(std::move(hitting)) {
   config_.validate();
   if (!(ball_radius > 0.0 && ball_radius < 1.0))

@@ -45,7 +45,7 @@ sim::World make_ball_world(const sim::World& arm_world) {
 }
 
 ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
-                              const ModuleConfig& config, const robot::WamMount& mount) {
+                              const ControllerConfig& config, const robot::WamMount& mount) {
   const mjModel* m = world.model();
   const int ball = world.ids().ball_geom;
   if (ball < 0 || ball >= m->ngeom)

@@ -43,7 +43,7 @@ sim::World make_ball_world(const sim::World& arm_world);
 /// the compiled model's limits (robot::arm_model_from_mujoco), the ball's radius from its geom.
 /// Validates; throws InputError.
 ModuleModel make_module_model(const sim::World& world, ds::HittingModel hitting,
-                              const ModuleConfig& config, const robot::WamMount& mount = {});
+                              const ControllerConfig& config, const robot::WamMount& mount = {});
 
 /// Resets the module to Idle with the reference at the arm's joint positions in `d`.
 void module_reset(const ModuleModel& model, ModuleData& data, const robot::ArmIds& arm,

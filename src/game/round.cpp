@@ -111,7 +111,7 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
     const field::Field& field = w.belief->field();
     const auto hole = field.hole.position;
     const LaneRegion region(field, hole);
-    const control::ModuleConfig& mc = w.belief->module().config();
+    const control::ControllerConfig& mc = w.belief->module().config();
     const double club_min = mc.speed_min, club_max = std::min(mc.speed_max, mc.arm_speed_cap);
     Rng rng(derive_seed(options.seed, 1000 + h));
     std::normal_distribution<double> normal(0.0, 1.0);

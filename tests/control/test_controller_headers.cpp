@@ -18,7 +18,7 @@ TEST(ControllerHeaders, TheModuleNeedsNoSimulator) {
   const ModuleModel model(robot::ArmModel(robot::WamMount{}),
                           ds::read_hitting_model(std::string(MINIGOLF_SOURCE_DIR) +
                                                  "/data/models/hitting-default.json"),
-                          ModuleConfig{}, 0.021335);
+                          ControllerConfig{}, 0.021335);  // no file, address or thread
   ModuleData data(model);
   robot::Vector7 q;
   for (int j = 0; j < 7; ++j) q[j] = robot::kDefaultRestPosture[static_cast<std::size_t>(j)];

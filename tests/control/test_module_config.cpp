@@ -55,6 +55,39 @@ TEST(ModuleConfig, BadValuesNameTheirField) {
   }
 }
 
+TEST(ModuleConfig, GroupedKeysReadAsFlatOnesAndAWrongGroupIsNamed) {
+  const auto flat = parse_module_config("kp: 100\nfield: arctan\nvision_port: 0\n", "flat");
+  const auto grouped = parse_module_config(
+      "controller: {kp: 100}\nsession: {field: arctan}\nvision: {vision_port: 0}\n", "grouped");
+  EXPECT_EQ(flat, grouped);
+  EXPECT_NE(flat, ModuleConfig{});
+  const std::pair<const char*, const char*> cases[] = {
+      {"controller: {field: arctan}", "belongs under 'session'"},
+      {"vision: {kp: 1}", "belongs under 'controller'"},
+      {"session: 3", "expected a mapping"},
+      {"controller: {typo: 1}", "typo"},
+      {"vision: {vision_port: 70000}", "vision_port"},
+  };
+  for (const auto& [text, message] : cases) {
+    try {
+      parse_module_config(text, "cfg");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(ModuleConfig, EachPartComparesOnlyItsOwnKeys) {
+  ModuleConfig a, b;
+  b.vision_port = 0;
+  b.record = "x.csv";
+  EXPECT_NE(a, b);
+  EXPECT_EQ(static_cast<const ControllerConfig&>(a), static_cast<const ControllerConfig&>(b));
+  b.kp[3] = 1.0;
+  EXPECT_NE(static_cast<const ControllerConfig&>(a), static_cast<const ControllerConfig&>(b));
+}
+
 TEST(ModuleConfig, MissingFileIsAnIoError) {
   EXPECT_THROW(load_module_config("/nonexistent/module.yaml"), IoError);
 }
