@@ -102,7 +102,7 @@ void add_sweep(CLI::App& app) {
 void add_collect(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string strategy, situations, out;
+    std::string strategy, situations, balls, out;
     std::uint64_t seed = 1;
     bool resume = false;
     int max_full_putts = teacher::TeacherOptions{}.max_full_putts;
@@ -117,6 +117,9 @@ void add_collect(CLI::App& app) {
   cmd->add_option("--situations", a->situations,
                   "Region instead of the field's: line:X0,Y0:X1,Y1:N | grid:X0,X1:Y0,Y1:NX,NY | "
                   "box:... | list:X,Y;X,Y");
+  cmd->add_option("--balls", a->balls,
+                  "Where the ball lies instead of the field's (the same grammar; default: the "
+                  "tee): every ball with every hole (docs/play.md)");
   cmd->add_option("--seed", a->seed, "Seed (recorded; the teacher is deterministic)")
       ->check(unsigned_integer())
       ->capture_default_str();
@@ -132,19 +135,20 @@ void add_collect(CLI::App& app) {
   cmd->callback([a] {
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
                              load_plant_arg(a->sys.plant));
-    const field::Situations region = field::region_from_spec(sys.field(), a->situations);
+    const field::Situations region = field::region_from_spec(sys.field(), a->situations, a->balls);
     experiments::CollectOptions o;
     o.teacher = teacher::options_for(region, a->strategy);
     o.teacher.max_full_putts = a->max_full_putts;
     o.seed = a->seed;
     o.threads = a->sys.threads;
     o.resume = a->resume;
-    const auto holes =
-        a->random > 0 ? region.sample(a->random, a->seed) : region.collection_points();
-    Progress bar("collect", static_cast<int>(holes.size()));
+    const auto situations = a->random > 0
+                                ? region.sample_situations(sys.field(), a->random, a->seed)
+                                : region.collection_situations(sys.field());
+    Progress bar("collect", static_cast<int>(situations.size()));
     int full = 0, ball = 0;
-    const auto r =
-        experiments::collect(sys, holes, o, a->out, [&](int done, int, const teacher::Example& e) {
+    const auto r = experiments::collect(
+        sys, situations, o, a->out, [&](int done, int, const teacher::Example& e) {
           full += e.full_putts;
           ball += e.ball_putts;
           bar.update(done, fmt::format("({} full-system, {} ball-only putts)", full, ball));
@@ -170,7 +174,7 @@ void add_collect(CLI::App& app) {
 void add_evaluate(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string model, situations_spec, rows, strategy, save_model, learn_mode = "residual";
+    std::string model, situations_spec, balls, rows, strategy, save_model, learn_mode = "residual";
     int situations = 30;
     std::uint64_t seed = 1;
     bool json = false, no_oracle = false, learn = false;
@@ -186,6 +190,8 @@ void add_evaluate(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--region", a->situations_spec,
                   "Region instead of the field's (as collect --situations)");
+  cmd->add_option("--balls", a->balls,
+                  "Where the ball lies instead of the field's (as collect --balls)");
   cmd->add_option("--seed", a->seed, "Seed of the test situations")
       ->check(unsigned_integer())
       ->capture_default_str();
@@ -214,7 +220,8 @@ void add_evaluate(CLI::App& app) {
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
                              load_plant_arg(a->sys.plant));
     experiments::check_playable_model(model, a->model, &sys);
-    const field::Situations region = field::region_from_spec(sys.field(), a->situations_spec);
+    const field::Situations region =
+        field::region_from_spec(sys.field(), a->situations_spec, a->balls);
     experiments::EvaluateOptions o;
     o.situations = a->situations;
     o.seed = a->seed;
@@ -255,6 +262,7 @@ void add_evaluate(CLI::App& app) {
       for (const auto& r : e.rows)
         rows.push_back(
             {{"hole", r.hole},
+             {"ball", r.ball},
              {"angle", r.predicted.angle},
              {"speed", r.predicted.speed},
              {"in_envelope", r.in_envelope},

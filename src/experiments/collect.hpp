@@ -7,7 +7,8 @@
 /// found example (index order), and `# unplayable: ...` comment lines for situations where the
 /// teacher found nothing. Comment lines are skipped by every CSV reader of the project, so the
 /// file trains as it is: columns index,hole_x,hole_y,xi_x,xi_y,angle,speed,margin_angle,
-/// margin_speed,launch_angle,launch_speed,approach_speed,full_putts,ball_putts.
+/// margin_speed,launch_angle,launch_speed,approach_speed,full_putts,ball_putts (xi = hole - ball),
+/// and ball_x,ball_y when a ball lies off the tee (a region with a ball region).
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -45,11 +46,22 @@ constexpr double kAngleJump = 0.05;  ///< [rad]
 constexpr double kSpeedJump = 0.1;   ///< [m/s]
 
 /// `progress(done, total, example)` after each situation (completion order).
+CollectResult collect(const system::System& system, const std::vector<field::Situation>& situations,
+                      const CollectOptions& options, const std::filesystem::path& out,
+                      const std::function<void(int, int, const teacher::Example&)>& progress = {});
+/// The same with every ball on the tee.
 CollectResult collect(const system::System& system, const std::vector<std::array<double, 2>>& holes,
                       const CollectOptions& options, const std::filesystem::path& out,
                       const std::function<void(int, int, const teacher::Example&)>& progress = {});
 
+/// The situations of `holes` with the ball on the field's tee.
+std::vector<field::Situation> on_tee(const field::Field& field,
+                                     const std::vector<std::array<double, 2>>& holes);
+
 /// The settings line (without the leading "# ") for a run; exposed for tests.
+std::string collect_settings(const system::System& system,
+                             const std::vector<field::Situation>& situations,
+                             const CollectOptions& options);
 std::string collect_settings(const system::System& system,
                              const std::vector<std::array<double, 2>>& holes,
                              const CollectOptions& options);

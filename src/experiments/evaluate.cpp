@@ -42,11 +42,10 @@ int output_index(const learning::Model& m, std::string_view name) {
 void check_playable_model(const learning::Model& model, const std::string& source,
                           const system::System* system) {
   for (const auto& n : model.input_names)
-    if (n != "xi_x" && n != "xi_y" && n != "hole_x" && n != "hole_y")
-      throw InputError(
-          fmt::format("{}: model input '{}' does not match a situation (expected xi_x, "
-                      "xi_y, hole_x or hole_y)",
-                      source, n));
+    if (std::find(field::kSituationInputs.begin(), field::kSituationInputs.end(), n) ==
+        field::kSituationInputs.end())
+      throw InputError(fmt::format("{}: model input '{}' does not match a situation (expected {})",
+                                   source, n, fmt::join(field::kSituationInputs, ", ")));
   if (output_index(model, "angle") < 0)
     throw InputError(fmt::format("{}: the model has no output 'angle' (outputs: {})", source,
                                  fmt::join(model.output_names, ", ")));
@@ -63,12 +62,21 @@ void check_playable_model(const learning::Model& model, const std::string& sourc
 
 std::vector<Prediction> predict_hits(const learning::Model& model, const field::Field& field,
                                      const std::vector<std::array<double, 2>>& holes) {
+  std::vector<field::Situation> situations;
+  situations.reserve(holes.size());
+  for (const auto& h : holes) situations.push_back({field.tee, h});
+  return predict_hits(model, field, situations);
+}
+
+std::vector<Prediction> predict_hits(const learning::Model& model, const field::Field& field,
+                                     const std::vector<field::Situation>& situations) {
   check_playable_model(model, "model");
+  const auto& holes = situations;
   Eigen::MatrixXd q(static_cast<Eigen::Index>(holes.size()), model.num_inputs());
   for (std::size_t i = 0; i < holes.size(); ++i)
     for (int c = 0; c < model.num_inputs(); ++c) {
-      q(static_cast<Eigen::Index>(i), c) =
-          field::situation_input(field, model.input_names[static_cast<std::size_t>(c)], holes[i]);
+      q(static_cast<Eigen::Index>(i), c) = field::situation_input(
+          field, model.input_names[static_cast<std::size_t>(c)], situations[i]);
     }
   std::vector<Prediction> out(holes.size());
   if (holes.empty()) return out;
@@ -89,18 +97,25 @@ game::HitModel round_hit_model(std::shared_ptr<const learning::Model> model,
                                const field::Field& field) {
   if (!model) throw InputError("round model: no model");
   check_playable_model(*model, "model");
-  bool absolute = false;
-  for (const auto& n : model->input_names) absolute = absolute || n == "hole_x" || n == "hole_y";
+  bool absolute = false, knows_ball = false;
+  for (const auto& n : model->input_names) {
+    absolute = absolute || n == "hole_x" || n == "hole_y";
+    knows_ball = knows_ball || n == "ball_x" || n == "ball_y";
+  }
   constexpr double kTeeTolerance = 0.01;  // [m]
-  return [model, field, absolute](std::array<double, 2> ball,
-                                  std::array<double, 2> hole) -> std::optional<game::ModelHit> {
-    if (absolute && std::hypot(ball[0] - field.tee[0], ball[1] - field.tee[1]) > kTeeTolerance)
+  return [model, field, absolute, knows_ball](
+             std::array<double, 2> ball,
+             std::array<double, 2> hole) -> std::optional<game::ModelHit> {
+    if (absolute && !knows_ball &&
+        std::hypot(ball[0] - field.tee[0], ball[1] - field.tee[1]) > kTeeTolerance)
       return std::nullopt;
-    const std::array<double, 2> h = absolute
-                                        ? hole
-                                        : std::array<double, 2>{field.tee[0] + hole[0] - ball[0],
-                                                                field.tee[1] + hole[1] - ball[1]};
-    const Prediction p = predict_hits(*model, field, {h}).front();
+    // A model of the ball's position is asked at the ball; one of xi only, as from the tee.
+    const field::Situation s =
+        knows_ball || absolute
+            ? field::Situation{ball, hole}
+            : field::Situation{
+                  field.tee, {field.tee[0] + hole[0] - ball[0], field.tee[1] + hole[1] - ball[1]}};
+    const Prediction p = predict_hits(*model, field, std::vector<field::Situation>{s}).front();
     if (!std::isfinite(p.angle) || !std::isfinite(p.speed)) return std::nullopt;
     return game::ModelHit{p.angle, p.speed};
   };
@@ -122,8 +137,8 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
   check_playable_model(model, "model", &system);
   return evaluate_policy(
       system,
-      [&](const std::vector<std::array<double, 2>>& holes) {
-        return predict_hits(model, system.field(), holes);
+      [&](const std::vector<field::Situation>& situations) {
+        return predict_hits(model, system.field(), situations);
       },
       region, options, progress);
 }
@@ -132,16 +147,23 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
                            const field::Situations& region, const EvaluateOptions& options,
                            const std::function<void(int, int)>& progress) {
   options.validate();
-  const auto holes = region.sample(options.situations, options.seed);
-  std::vector<std::array<double, 2>> perceived = holes;
+  const auto& field = system.field();
+  const auto situations = region.sample_situations(field, options.situations, options.seed);
+  std::vector<field::Situation> perceived = situations;
   if (options.perception_noise > 0.0)
-    for (std::size_t i = 0; i < holes.size(); ++i) {
+    for (std::size_t i = 0; i < situations.size(); ++i) {
       Rng rng(derive_seed(options.noise_seed, i));
       std::normal_distribution<double> n(0.0, options.perception_noise);
       const double hx = n(rng), hy = n(rng), bx = n(rng), by = n(rng);
-      // xi = hole - ball: the hole's and the ball's errors both enter it.
-      perceived[i] = {holes[i][0] + hx - bx, holes[i][1] + hy - by};
+      const auto& [ball, hole] = situations[i];
+      // xi = hole - ball: the hole's and the ball's errors both enter it. A ball on the tee is
+      // seen there and the hole off by both errors (the same xi).
+      perceived[i] =
+          ball == field.tee
+              ? field::Situation{ball, {hole[0] + hx - bx, hole[1] + hy - by}}
+              : field::Situation{{ball[0] + bx, ball[1] + by}, {hole[0] + hx, hole[1] + hy}};
     }
+  const auto& holes = situations;
   const auto predictions = policy(perceived);
   if (predictions.size() != holes.size())
     throw Error(
@@ -155,7 +177,8 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
       system, e.rows, options.threads,
       [&](int i, system::SystemData& data) {
         SituationResult& r = e.rows[static_cast<std::size_t>(i)];
-        r.hole = holes[static_cast<std::size_t>(i)];
+        r.hole = situations[static_cast<std::size_t>(i)].hole;
+        r.ball = situations[static_cast<std::size_t>(i)].ball;
         r.predicted = predictions[static_cast<std::size_t>(i)];
         const double a = r.predicted.angle, v = r.predicted.speed;
         r.in_envelope = std::isfinite(a) && std::isfinite(v) && a >= c.angle_min &&
@@ -164,12 +187,14 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
           control::FullPuttOptions po;
           po.torque_noise = options.torque_noise;  // (a plant may add its own: the seed is set)
           po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
+          if (r.ball != field.tee) po.stance = system::stance_for(system, r.ball, 0.0);
           const control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
           r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
           r.outcome = p.outcome;
         }
         if (options.oracle) {
-          const teacher::Example ex = teacher::teach(system, data, r.hole, options.teacher);
+          const teacher::Example ex =
+              teacher::teach(system, data, field::Situation{r.ball, r.hole}, options.teacher);
           r.oracle_found = ex.found;
           r.oracle_full_putts = ex.full_putts;
           r.oracle_ball_putts = ex.ball_putts;
@@ -371,6 +396,8 @@ LearningEvaluation evaluate_learning(const system::System& system, const learnin
   options.validate();
   if (options.perception_noise > 0.0 || options.oracle)
     throw InputError("--learn: plays without perception noise and without the oracle");
+  if (region.balls)
+    throw InputError("--learn: plays from the tee; this region has a ball region (not supported)");
   return options.learn == LearnMode::kAppend
              ? evaluate_appending(system, model, region, options, progress)
              : evaluate_residual(system, model, region, options, progress);
@@ -379,20 +406,39 @@ LearningEvaluation evaluate_learning(const system::System& system, const learnin
 std::string evaluation_csv(const Evaluation& e, const field::Field& field) {
   std::vector<std::vector<double>> rows;
   for (const auto& r : e.rows)
-    rows.push_back({r.hole[0], r.hole[1], r.hole[0] - field.tee[0], r.hole[1] - field.tee[1],
-                    r.predicted.angle, r.predicted.speed, r.predicted.angle_std,
-                    r.predicted.speed_std, r.in_envelope ? 1.0 : 0.0, r.sunk ? 1.0 : 0.0,
-                    r.in_envelope ? r.outcome.closest_approach : 1e3, r.outcome.rest_position[0],
-                    r.outcome.rest_position[1], r.oracle_found ? 1.0 : 0.0,
-                    static_cast<double>(r.oracle_full_putts),
-                    static_cast<double>(r.oracle_ball_putts)});
+    rows.push_back(
+        {r.hole[0], r.hole[1], r.hole[0] - r.ball[0], r.hole[1] - r.ball[1], r.predicted.angle,
+         r.predicted.speed, r.predicted.angle_std, r.predicted.speed_std, r.in_envelope ? 1.0 : 0.0,
+         r.sunk ? 1.0 : 0.0, r.in_envelope ? r.outcome.closest_approach : 1e3,
+         r.outcome.rest_position[0], r.outcome.rest_position[1], r.oracle_found ? 1.0 : 0.0,
+         static_cast<double>(r.oracle_full_putts), static_cast<double>(r.oracle_ball_putts)});
+  // Balls off the tee (a ball region): their positions as two more columns.
+  bool off_tee = false;
+  for (const auto& r : e.rows) off_tee = off_tee || r.ball != field.tee;
+  if (off_tee)
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      rows[i].insert(rows[i].end(), {e.rows[i].ball[0], e.rows[i].ball[1]});
   for (auto& row : rows)
     for (auto& v : row)
       if (!std::isfinite(v)) v = 0.0;
-  return format_csv({"hole_x", "hole_y", "xi_x", "xi_y", "angle", "speed", "angle_std", "speed_std",
-                     "in_envelope", "sunk", "closest_approach", "rest_x", "rest_y", "oracle_found",
-                     "oracle_full_putts", "oracle_ball_putts"},
-                    rows);
+  std::vector<std::string> columns{"hole_x",
+                                   "hole_y",
+                                   "xi_x",
+                                   "xi_y",
+                                   "angle",
+                                   "speed",
+                                   "angle_std",
+                                   "speed_std",
+                                   "in_envelope",
+                                   "sunk",
+                                   "closest_approach",
+                                   "rest_x",
+                                   "rest_y",
+                                   "oracle_found",
+                                   "oracle_full_putts",
+                                   "oracle_ball_putts"};
+  if (off_tee) columns.insert(columns.end(), {"ball_x", "ball_y"});
+  return format_csv(columns, rows);
 }
 
 }  // namespace mg::experiments

@@ -21,15 +21,19 @@ namespace mg::experiments {
 /// 95 % Wilson score interval of k successes in n trials ([0, 1] for n = 0).
 std::array<double, 2> wilson_interval(int k, int n, double z = 1.959963984540054);
 
-/// Hitting parameters for hole positions from a learner model whose inputs are among xi_x, xi_y
-/// (hole - tee), hole_x, hole_y and whose outputs include `angle` and either `speed` or a fixed
-/// speed (Model::fixed). Throws InputError naming the mismatch.
+/// Hitting parameters for hole positions (the ball on the tee) from a learner model whose inputs
+/// are among field::kSituationInputs (xi = hole - ball, hole_x, hole_y, ball_x, ball_y) and whose
+/// outputs include `angle` and either `speed` or a fixed speed (Model::fixed). Throws InputError
+/// naming the mismatch.
 struct Prediction {
   double angle = 0.0, speed = 0.0;          ///< [rad], [m/s]
   double angle_std = 0.0, speed_std = 0.0;  ///< predictive std (0 for a fixed speed)
 };
 std::vector<Prediction> predict_hits(const learning::Model& model, const field::Field& field,
                                      const std::vector<std::array<double, 2>>& holes);
+/// The same for situations (inputs also among ball_x, ball_y; xi = hole - ball).
+std::vector<Prediction> predict_hits(const learning::Model& model, const field::Field& field,
+                                     const std::vector<field::Situation>& situations);
 /// Throws InputError unless the model can be played on a field (see predict_hits): a fixed
 /// speed is a finite club speed > 0, inside `system`'s safe envelope when one is given.
 void check_playable_model(const learning::Model& model, const std::string& source,
@@ -71,6 +75,7 @@ struct EvaluateOptions {
 
 struct SituationResult {
   std::array<double, 2> hole{0, 0};
+  std::array<double, 2> ball{0, 0};  ///< where the ball lay (the tee unless a ball region)
   Prediction predicted;
   bool in_envelope = true;  ///< false: the module refused the request (it counts as a miss)
   bool sunk = false;
@@ -88,12 +93,13 @@ struct Evaluation {
   double oracle_ceiling = 0.0;  ///< NaN without the oracle
 };
 
-/// Chooses the putts for a list of (perceived) hole positions.
-using Policy = std::function<std::vector<Prediction>(const std::vector<std::array<double, 2>>&)>;
+/// Chooses the putts for a list of (perceived) situations.
+using Policy = std::function<std::vector<Prediction>(const std::vector<field::Situation>&)>;
 
-/// Plays `options.situations` situations drawn from `region` with `seed` (the same for every
-/// policy, so methods are compared on the same holes), each with the putt `policy` chooses for
-/// the hole as perceived. Same bits for any thread count.
+/// Plays `options.situations` situations drawn from `region` with `seed`
+/// (Situations::sample_situations: the same for every policy, so methods are compared on the same
+/// situations), each with the putt `policy` chooses for the situation as perceived; a ball off the
+/// tee is hit with the base beside it (system::stance_for, aim 0). Same bits for any thread count.
 Evaluation evaluate_policy(const system::System& system, const Policy& policy,
                            const field::Situations& region, const EvaluateOptions& options,
                            const std::function<void(int, int)>& progress = {});
@@ -124,7 +130,8 @@ LearningEvaluation evaluate_learning(const system::System& system, const learnin
                                      const std::function<void(int, int)>& progress = {});
 
 /// CSV, one row per situation: hole_x,hole_y,xi_x,xi_y,angle,speed,angle_std,speed_std,
-/// in_envelope,sunk,closest_approach,rest_x,rest_y,oracle_found,oracle_full_putts,oracle_ball_putts.
+/// in_envelope,sunk,closest_approach,rest_x,rest_y,oracle_found,oracle_full_putts,oracle_ball_putts
+/// (xi = hole - ball), and ball_x,ball_y when a ball lay off the tee.
 std::string evaluation_csv(const Evaluation& e, const field::Field& field);
 
 }  // namespace mg::experiments

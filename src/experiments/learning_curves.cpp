@@ -199,10 +199,10 @@ CurveRun crkr_run(const system::System& sys, const field::Situations& region, in
   const auto r = selfteach::crkr_learn(sys, region, co);
   CurveRun c;
   for (const auto& [k, policy] : r.checkpoint_policies) {
-    const Policy play = [&, &pol = policy](const std::vector<std::array<double, 2>>& holes) {
+    const Policy play = [&, &pol = policy](const std::vector<field::Situation>& situations) {
       std::vector<Prediction> out;
-      for (const auto& h : holes) {
-        const auto a = pol.act(sys.field(), region, h);
+      for (const auto& s : situations) {
+        const auto a = pol.act(sys.field(), region, s.hole);  // the region has no ball region
         out.push_back({a[0], a[1], 0.0, 0.0});
       }
       return out;
@@ -219,6 +219,10 @@ std::vector<CurveRun> learning_curves(const system::System& system, const field:
                                       CurveLearner learner, const CurveOptions& options,
                                       const std::function<void(int, int)>& progress) {
   options.validate();
+  if (region.balls)
+    throw InputError(
+        "learning curves: the learners start from the tee; this region has a ball "
+        "region (not supported)");
   if (needs_prior(learner) && !options.prior)
     throw InputError(fmt::format("learning curves: --learner {} needs a prior model (--prior)",
                                  to_string(learner)));

@@ -62,6 +62,11 @@ FieldRun prepare_field(const Run& run, const std::string& name, Tables& t) {
   f.sys = std::make_unique<system::System>(system::load_config(opt.config, name), run.run_plant);
   const system::System& sys = *f.sys;
   f.region = sys.field().situations;
+  if (f.region.balls)
+    throw InputError(
+        fmt::format("reproduce: field '{}': the thesis's experiments play from the "
+                    "tee; its situations have a ball region",
+                    name));
   f.teacher.strategy = teacher::parse_strategy(f.region.strategy);
   f.teacher.learn_speed = f.region.learn_speed;
   f.teacher.fixed_speed = f.region.speed;

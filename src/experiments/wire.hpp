@@ -13,11 +13,11 @@ namespace mg::system {
 
 template <>
 struct Wire<teacher::Example> {
-  static_assert(sizeof(teacher::Example) == 88,
+  static_assert(sizeof(teacher::Example) == 104,
                 "teacher::Example changed: update Wire<teacher::Example>");
   template <typename A>
   static void fields(A& a, teacher::Example& e) {
-    a(e.hole, e.found, e.angle, e.speed, e.margin_angle, e.margin_speed, e.launch_angle,
+    a(e.hole, e.ball, e.found, e.angle, e.speed, e.margin_angle, e.margin_speed, e.launch_angle,
       e.launch_speed, e.approach_speed, e.full_putts, e.ball_putts);
   }
 };
@@ -43,12 +43,12 @@ struct Wire<experiments::Prediction> {
 
 template <>
 struct Wire<experiments::SituationResult> {
-  static_assert(sizeof(experiments::SituationResult) == 168,
+  static_assert(sizeof(experiments::SituationResult) == 184,
                 "SituationResult changed: update Wire<SituationResult>");
   template <typename A>
   static void fields(A& a, experiments::SituationResult& r) {
-    a(r.hole, r.predicted, r.in_envelope, r.sunk, r.outcome, r.oracle_found, r.oracle_full_putts,
-      r.oracle_ball_putts);
+    a(r.hole, r.ball, r.predicted, r.in_envelope, r.sunk, r.outcome, r.oracle_found,
+      r.oracle_full_putts, r.oracle_ball_putts);
   }
 };
 

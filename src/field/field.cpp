@@ -105,9 +105,8 @@ Obstacle parse_obstacle(MapReader r) {
   return o;
 }
 
-Situations parse_situations(MapReader r, const Field& field) {
-  Situations s;
-  s.from_file = true;
+/// One region's shape from `r` (exactly one of line, grid, box, list).
+void parse_region(MapReader& r, Region& s) {
   int shapes = 0;
   if (r.has("line")) {
     ++shapes;
@@ -141,6 +140,20 @@ Situations parse_situations(MapReader r, const Field& field) {
   if (shapes != 1)
     r.fail(r.full("(shape)"),
            fmt::format("expected exactly one of line, grid, box, list; got {}", shapes));
+}
+
+Situations parse_situations(MapReader r, const Field& field) {
+  Situations s;
+  s.from_file = true;
+  parse_region(r, s);
+  if (r.has("ball")) {
+    MapReader b = r.child("ball");
+    Region balls;
+    parse_region(b, balls);
+    b.finish();
+    s.balls = balls;
+    s.ball_inputs = !translation_invariant(field);
+  }
   if (r.has("outputs")) {
     const auto outputs = r.texts("outputs");
     if (outputs == std::vector<std::string>{"angle"})
@@ -375,6 +388,21 @@ std::vector<std::string> list_shipped_fields() {
     if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
   std::sort(names.begin(), names.end());
   return names;
+}
+
+void check_ball_position(const field::Field& field, std::array<double, 2> ball,
+                         const std::string& what) {
+  const auto& b = field.bounds;
+  const double r = field.ball.radius;
+  if (!std::isfinite(ball[0]) || !std::isfinite(ball[1]) || ball[0] < b[0] + r ||
+      ball[0] > b[1] - r || ball[1] < b[2] + r || ball[1] > b[3] - r)
+    throw InputError(
+        fmt::format("{}: expected a ball on the lane [{}, {}] x [{}, {}], got ({}, {})", what,
+                    b[0] + r, b[1] - r, b[2] + r, b[3] - r, ball[0], ball[1]));
+  for (std::size_t i = 0; i < field.obstacles.size(); ++i)
+    if (field.obstacles[i].distance(ball) < r)
+      throw InputError(fmt::format("{}: the ball at ({}, {}) lies inside obstacle {} ({})", what,
+                                   ball[0], ball[1], i, to_string(field.obstacles[i].type)));
 }
 
 bool line_blocked(const Field& field, std::array<double, 2> a, std::array<double, 2> b,

@@ -72,6 +72,10 @@ std::vector<std::string> list_shipped_fields();
 /// Throws `InputError` unless a hole centred at `position` lies wholly inside the lane.
 void check_hole_position(const Field& field, std::array<double, 2> position);
 
+/// Throws InputError naming `what` unless a ball at `ball` lies on the lane, a ball radius from
+/// its borders and clear of every obstacle.
+void check_ball_position(const Field& field, std::array<double, 2> ball, const std::string& what);
+
 /// True if the segment a -> b passes within `clearance` [m] of an obstacle (sampled 1 cm apart):
 /// a ball rolling straight along it would meet one.
 bool line_blocked(const Field& field, std::array<double, 2> a, std::array<double, 2> b,

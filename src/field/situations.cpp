@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/error.hpp"
 #include "field/field.hpp"
@@ -75,16 +76,42 @@ std::string to_string(RegionShape shape) {
   return "?";
 }
 
-double situation_input(const Field& field, std::string_view name, std::array<double, 2> hole) {
-  if (name == "xi_x") return hole[0] - field.tee[0];
-  if (name == "xi_y") return hole[1] - field.tee[1];
+double situation_input(const Field& field, std::string_view name, const Situation& situation) {
+  const auto& [ball, hole] = situation;
+  if (name == "xi_x") return hole[0] - ball[0];
+  if (name == "xi_y") return hole[1] - ball[1];
   if (name == "hole_x") return hole[0];
   if (name == "hole_y") return hole[1];
-  throw InputError(
-      fmt::format("input '{}' is not a situation (expected xi_x, xi_y, hole_x or hole_y)", name));
+  if (name == "ball_x") return ball[0];
+  if (name == "ball_y") return ball[1];
+  (void)field;
+  throw InputError(fmt::format("input '{}' is not a situation (expected one of {})", name,
+                               fmt::join(kSituationInputs, ", ")));
+}
+
+double situation_input(const Field& field, std::string_view name, std::array<double, 2> hole) {
+  return situation_input(field, name, Situation{field.tee, hole});
+}
+
+bool translation_invariant(const Field& field) {
+  if (!field.obstacles.empty()) return false;
+  const auto& b = field.bounds;
+  const auto g0 = field.surface.gradient(b[0], b[2]);
+  constexpr int kSteps = 40;
+  for (int i = 0; i <= kSteps; ++i)
+    for (int j = 0; j <= kSteps; ++j) {
+      const auto g = field.surface.gradient(b[0] + (b[1] - b[0]) * i / kSteps,
+                                            b[2] + (b[3] - b[2]) * j / kSteps);
+      if (std::abs(g[0] - g0[0]) > 1e-9 || std::abs(g[1] - g0[1]) > 1e-9) return false;
+    }
+  return true;
 }
 
 std::vector<std::string> Situations::learner_inputs() const {
+  if (balls) {
+    if (ball_inputs) return {"xi_x", "xi_y", "ball_x", "ball_y"};
+    return {"xi_x", "xi_y"};
+  }
   if (shape == RegionShape::kLine)
     return {std::abs(to[1] - from[1]) >= std::abs(to[0] - from[0]) ? "xi_y" : "xi_x"};
   return {"xi_x", "xi_y"};
@@ -95,7 +122,7 @@ std::vector<std::string> Situations::learner_outputs() const {
   return {"angle"};
 }
 
-std::vector<std::array<double, 2>> Situations::collection_points() const {
+std::vector<std::array<double, 2>> Region::collection_points() const {
   std::vector<std::array<double, 2>> p;
   switch (shape) {
     case RegionShape::kLine:
@@ -116,7 +143,7 @@ std::vector<std::array<double, 2>> Situations::collection_points() const {
   return p;
 }
 
-std::array<double, 2> Situations::sample(Rng& rng) const {
+std::array<double, 2> Region::sample(Rng& rng) const {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   switch (shape) {
     case RegionShape::kLine: {
@@ -137,7 +164,7 @@ std::array<double, 2> Situations::sample(Rng& rng) const {
   return {0, 0};
 }
 
-std::vector<std::array<double, 2>> Situations::sample(int n, std::uint64_t seed) const {
+std::vector<std::array<double, 2>> Region::sample(int n, std::uint64_t seed) const {
   std::vector<std::array<double, 2>> out;
   out.reserve(static_cast<std::size_t>(std::max(n, 0)));
   for (int i = 0; i < n; ++i) {
@@ -147,9 +174,23 @@ std::vector<std::array<double, 2>> Situations::sample(int n, std::uint64_t seed)
   return out;
 }
 
-void Situations::validate(const Field& field, const std::string& where_arg) const {
-  const std::string where =
-      where_arg.empty() ? fmt::format("{}: situations", field.source) : where_arg;
+std::vector<std::array<double, 2>> Region::corners() const {
+  switch (shape) {
+    case RegionShape::kLine:
+      return {from, to};
+    case RegionShape::kList:
+      return points;
+    case RegionShape::kGrid:
+    case RegionShape::kBox:
+      break;
+  }
+  return {{x_range[0], y_range[0]},
+          {x_range[0], y_range[1]},
+          {x_range[1], y_range[0]},
+          {x_range[1], y_range[1]}};
+}
+
+void Region::check_shape(const std::string& where) const {
   const auto bad = [&](const std::string& why) {
     throw InputError(fmt::format("{}: {}", where, why));
   };
@@ -161,7 +202,7 @@ void Situations::validate(const Field& field, const std::string& where_arg) cons
     case RegionShape::kGrid:
     case RegionShape::kBox:
       if (counts[0] < 1 || counts[1] < 1 || counts[0] * counts[1] > kMaxPoints)
-        bad(fmt::format("counts: expected two counts >= 1 with at most {} holes, got [{}, {}]",
+        bad(fmt::format("counts: expected two counts >= 1 with at most {} points, got [{}, {}]",
                         kMaxPoints, counts[0], counts[1]));
       if (x_range[1] < x_range[0] || y_range[1] < y_range[0])
         bad(fmt::format("expected x and y ranges as [low, high], got [{}, {}], [{}, {}]",
@@ -172,23 +213,22 @@ void Situations::validate(const Field& field, const std::string& where_arg) cons
         bad(fmt::format("list.points: expected 1..{} points", kMaxPoints));
       break;
   }
+}
+
+void Situations::validate(const Field& field, const std::string& where_arg) const {
+  const std::string where =
+      where_arg.empty() ? fmt::format("{}: situations", field.source) : where_arg;
+  const auto bad = [&](const std::string& why) {
+    throw InputError(fmt::format("{}: {}", where, why));
+  };
+  check_shape(where);
   if (strategy != "min-speed" && strategy != "min-angle")
     bad(fmt::format("strategy: expected min-speed or min-angle, got '{}'", strategy));
   if (!learn_speed && !(speed > 0.0 && speed <= 10.0))
     bad(fmt::format("speed: an angle-only region needs its club speed in (0, 10] m/s, got {}",
                     speed));
   // Every hole of the region (its corners suffice for lines and rectangles) must fit the lane.
-  std::vector<std::array<double, 2>> corners;
-  if (shape == RegionShape::kLine)
-    corners = {from, to};
-  else if (shape == RegionShape::kList)
-    corners = points;
-  else
-    corners = {{x_range[0], y_range[0]},
-               {x_range[0], y_range[1]},
-               {x_range[1], y_range[0]},
-               {x_range[1], y_range[1]}};
-  for (const auto& c : corners) {
+  for (const auto& c : corners()) {
     try {
       check_hole_position(field, c);
     } catch (const InputError& e) {
@@ -197,34 +237,91 @@ void Situations::validate(const Field& field, const std::string& where_arg) cons
     if (std::hypot(c[0] - field.tee[0], c[1] - field.tee[1]) < field.hole.diameter)
       bad(fmt::format("hole ({}, {}) lies on the tee", c[0], c[1]));
   }
+  if (!balls) return;
+  balls->check_shape(where + ": ball");
+  // A rectangle's corners on the lane leave its inside on it only without obstacles: the
+  // collection grid is checked too.
+  auto ball_points = balls->corners();
+  for (const auto& p : balls->collection_points()) ball_points.push_back(p);
+  for (const auto& p : ball_points) check_ball_position(field, p, where + ": ball");
+  if (collection_situations(field).empty())
+    bad("every hole of the region covers every ball of its ball region");
 }
 
-std::array<double, 4> Situations::bounds() const {
-  std::vector<std::array<double, 2>> corners;
-  switch (shape) {
-    case RegionShape::kLine:
-      corners = {from, to};
-      break;
-    case RegionShape::kGrid:
-    case RegionShape::kBox:
-      corners = {{x_range[0], y_range[0]}, {x_range[1], y_range[1]}};
-      break;
-    case RegionShape::kList:
-      corners = points;
-      break;
-  }
-  if (corners.empty()) throw InputError("situations: an empty list of holes");
-  std::array<double, 4> b{corners[0][0], corners[0][0], corners[0][1], corners[0][1]};
-  for (const auto& c : corners) {
-    b[0] = std::min(b[0], c[0]), b[1] = std::max(b[1], c[0]);
-    b[2] = std::min(b[2], c[1]), b[3] = std::max(b[3], c[1]);
+std::array<double, 4> Region::bounds() const {
+  const auto c = corners();
+  if (c.empty()) throw InputError("situations: an empty list of points");
+  std::array<double, 4> b{c[0][0], c[0][0], c[0][1], c[0][1]};
+  for (const auto& p : c) {
+    b[0] = std::min(b[0], p[0]), b[1] = std::max(b[1], p[0]);
+    b[2] = std::min(b[2], p[1]), b[3] = std::max(b[3], p[1]);
   }
   return b;
 }
 
-Situations region_from_spec(const Field& field, const std::string& spec) {
+namespace {
+
+/// The hole covers the ball, or the ball lies in an obstacle: no putt to play.
+bool covers(const Field& field, const Situation& s) {
+  if (std::hypot(s.hole[0] - s.ball[0], s.hole[1] - s.ball[1]) < field.hole.diameter) return true;
+  for (const auto& o : field.obstacles)
+    if (o.distance(s.ball) < field.ball.radius) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<Situation> Situations::collection_situations(const Field& field) const {
+  const std::vector<std::array<double, 2>> ball_points =
+      balls ? balls->collection_points() : std::vector<std::array<double, 2>>{field.tee};
+  std::vector<Situation> out;
+  for (const auto& b : ball_points)
+    for (const auto& h : collection_points())
+      if (const Situation s{b, h}; !covers(field, s)) out.push_back(s);
+  return out;
+}
+
+std::vector<Situation> Situations::sample_situations(const Field& field, int n,
+                                                     std::uint64_t seed) const {
+  constexpr int kRedraws = 100;
+  std::vector<Situation> out;
+  out.reserve(static_cast<std::size_t>(std::max(n, 0)));
+  for (int i = 0; i < n; ++i) {
+    Rng rng(derive_seed(seed, static_cast<std::uint64_t>(i)));
+    Situation s{field.tee, sample(rng)};
+    if (balls) {
+      int tries = 0;
+      do {
+        s.ball = balls->sample(rng);
+      } while (covers(field, s) && ++tries < kRedraws);
+      if (covers(field, s))
+        throw InputError(
+            fmt::format("situations: no ball of the ball region clears the hole at "
+                        "({}, {}) and the obstacles",
+                        s.hole[0], s.hole[1]));
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+Situations region_from_spec(const Field& field, const std::string& spec,
+                            const std::string& balls_spec) {
   Situations r = spec.empty() ? field.situations : parse_situations_spec(spec, field.situations);
-  r.validate(field, spec.empty() ? "" : fmt::format("--situations '{}'", spec));
+  if (!balls_spec.empty()) {
+    try {
+      r.balls = parse_situations_spec(balls_spec, Situations{});
+    } catch (const InputError& e) {  // name the option the spec came from
+      std::string what = e.what();
+      if (what.rfind("--situations", 0) == 0) what.replace(0, 12, "--balls");
+      throw InputError(what);
+    }
+    r.ball_inputs = !translation_invariant(field);
+  }
+  const std::string where = !balls_spec.empty() ? fmt::format("--balls '{}'", balls_spec)
+                            : spec.empty()      ? ""
+                                                : fmt::format("--situations '{}'", spec);
+  r.validate(field, where);
   return r;
 }
 

@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,23 @@
 #include "python/bindings.hpp"
 
 namespace mg::python {
+
+namespace {
+
+/// (N, 4) array of ball_x, ball_y, hole_x, hole_y.
+Array situations_array(const std::vector<field::Situation>& situations) {
+  Array out({static_cast<py::ssize_t>(situations.size()), py::ssize_t{4}});
+  double* d = out.mutable_data();
+  for (const auto& s : situations) {
+    *d++ = s.ball[0];
+    *d++ = s.ball[1];
+    *d++ = s.hole[0];
+    *d++ = s.hole[1];
+  }
+  return out;
+}
+
+}  // namespace
 
 void bind_fields(py::module_& m) {
   py::class_<field::Situations>(m, "Situations",
@@ -39,8 +57,21 @@ void bind_fields(py::module_& m) {
           py::arg("n"), py::arg("seed") = 1,
           "`n` test situations drawn uniformly from the region with `seed`, (n, 2) [m]")
       .def_property_readonly(
-          "bounds", &field::Situations::bounds,
-          "(x_min, x_max, y_min, y_max) [m] of every hole the region holds or samples");
+          "bounds", [](const field::Situations& s) { return s.bounds(); },
+          "(x_min, x_max, y_min, y_max) [m] of every hole the region holds or samples")
+      .def_property_readonly(
+          "ball_bounds",
+          [](const field::Situations& s) -> std::optional<std::array<double, 4>> {
+            if (!s.balls) return std::nullopt;
+            return s.balls->bounds();
+          },
+          "(x_min, x_max, y_min, y_max) [m] of the ball region, or None (the ball on the tee)")
+      .def_property_readonly("learner_inputs", &field::Situations::learner_inputs,
+                             "What a learner of this region takes: xi_x, xi_y (hole - ball) or "
+                             "one of them, plus ball_x, ball_y on a lane that is not "
+                             "translation-invariant with a ball region")
+      .def_property_readonly("learner_outputs", &field::Situations::learner_outputs,
+                             "['angle', 'speed'] or ['angle']");
 
   py::class_<field::Field>(m, "Field",
                            "A minigolf lane: bounds, surface, tee, hole, ball, resistances.")
@@ -69,10 +100,29 @@ void bind_fields(py::module_& m) {
       .def_readonly("sliding_friction", &field::Field::sliding_friction,
                     "Ball-lane Coulomb friction [-]")
       .def_readonly("situations", &field::Field::situations)
-      .def("region", &field::region_from_spec, py::arg("spec") = "",
+      .def("region", &field::region_from_spec, py::arg("spec") = "", py::arg("balls") = "",
            "The field's region of situations, or the one of `spec` (as `--situations`: "
            "line:X0,Y0:X1,Y1:N, "
-           "grid:X0,X1:Y0,Y1:NX,NY, box:..., list:X,Y;X,Y), checked against the lane (ValueError)")
+           "grid:X0,X1:Y0,Y1:NX,NY, box:..., list:X,Y;X,Y), checked against the lane (ValueError); "
+           "`balls`: where the ball lies, in the same grammar (default: the field's, else the tee)")
+      .def(
+          "collection_situations",
+          [](const field::Field& f, const field::Situations& region) {
+            return situations_array(region.collection_situations(f));
+          },
+          py::arg("region"),
+          "The (ball, hole) pairs a data set of `region` is collected at, (N, 4) [m]: ball_x, "
+          "ball_y, hole_x, hole_y (the ball on the tee without a ball region)")
+      .def(
+          "sample_situations",
+          [](const field::Field& f, const field::Situations& region, int n, std::uint64_t seed) {
+            if (n < 0)
+              throw InputError(fmt::format("sample_situations: n: expected >= 0, got {}", n));
+            return situations_array(region.sample_situations(f, n, seed));
+          },
+          py::arg("region"), py::arg("n"), py::arg("seed") = 1,
+          "`n` test situations of `region` with `seed` (as evaluate draws them), (n, 4) [m]: "
+          "ball_x, ball_y, hole_x, hole_y")
       .def(
           "check_hole",
           [](const field::Field& f, std::array<double, 2> hole) {

@@ -75,6 +75,7 @@ void bind_system(py::module_& m) {
   py::class_<teacher::Example>(m, "Example",
                                "A teacher's example: a sinking putt with a verified neighbourhood.")
       .def_readonly("hole", &teacher::Example::hole, "[m]")
+      .def_readonly("ball", &teacher::Example::ball, "Where the ball lay [m] (the tee by default)")
       .def_readonly("found", &teacher::Example::found)
       .def_readonly("angle", &teacher::Example::angle, "Hitting angle [rad]")
       .def_readonly("speed", &teacher::Example::speed, "Club speed [m/s]")
@@ -104,6 +105,14 @@ void bind_system(py::module_& m) {
             return points(h);
           },
           "(N, 2) [m]")
+      .def_property_readonly(
+          "balls",
+          [](const experiments::Evaluation& e) {
+            std::vector<std::array<double, 2>> b;
+            for (const auto& r : e.rows) b.push_back(r.ball);
+            return points(b);
+          },
+          "(N, 2) [m] where each ball lay (the tee unless a ball region)")
       .def_property_readonly("sunk_mask", [](const experiments::Evaluation& e) {
         std::vector<bool> s;
         for (const auto& r : e.rows) s.push_back(r.sunk);
@@ -257,8 +266,8 @@ void bind_system(py::module_& m) {
           "collect",
           [](const system::System& s, const std::string& out, const std::string& situations,
              const std::string& strategy, int max_full_putts, std::uint64_t seed, int threads,
-             bool resume) {
-            const field::Situations region = field::region_from_spec(s.field(), situations);
+             bool resume, const std::string& balls) {
+            const field::Situations region = field::region_from_spec(s.field(), situations, balls);
             experiments::CollectOptions o;
             o.teacher = teacher::options_for(region, strategy);
             o.teacher.max_full_putts = max_full_putts;
@@ -266,39 +275,40 @@ void bind_system(py::module_& m) {
             o.seed = seed;
             o.threads = threads;
             o.resume = resume;
-            const auto holes = region.collection_points();
+            const auto pairs = region.collection_situations(s.field());
             py::gil_scoped_release release;
-            return experiments::collect(s, holes, o, out).examples;
+            return experiments::collect(s, pairs, o, out).examples;
           },
           py::arg("out"), py::arg("situations") = "", py::arg("strategy") = "",
           py::arg("max_full_putts") = kTeacherDefaults.max_full_putts,
           py::arg("seed") = kCollectDefaults.seed, py::arg("threads") = 0,
-          py::arg("resume") = false,
-          "The teacher collects a data set at the region's collection points (or a --situations "
-          "spec) into "
+          py::arg("resume") = false, py::arg("balls") = "",
+          "The teacher collects a data set at the region's collection situations (or a "
+          "--situations spec; `balls`: where the ball lies, as --balls) into "
           "the CSV `out`, as `minigolf collect` does (resumable); returns the examples in index "
           "order. "
           "Releases the GIL.")
       .def(
           "evaluate",
           [](const system::System& s, const learning::Model& model, int situations,
-             std::uint64_t seed, int threads, bool oracle, const std::string& region_spec) {
+             std::uint64_t seed, int threads, bool oracle, const std::string& region_spec,
+             const std::string& balls_spec) {
             experiments::check_playable_model(model, "model", &s);
             experiments::EvaluateOptions o;
             o.situations = situations;
             o.seed = seed;
             o.threads = threads;
             o.oracle = oracle;
-            const auto region = field::region_from_spec(s.field(), region_spec);
+            const auto region = field::region_from_spec(s.field(), region_spec, balls_spec);
             o.teacher = teacher::options_for(region);
             py::gil_scoped_release release;
             return experiments::evaluate_model(s, model, region, o);
           },
           py::arg("model"), py::arg("situations") = kEvaluateDefaults.situations,
           py::arg("seed") = kEvaluateDefaults.seed, py::arg("threads") = 0,
-          py::arg("oracle") = true, py::arg("region") = "",
+          py::arg("oracle") = true, py::arg("region") = "", py::arg("balls") = "",
           "The robot plays `situations` random test situations of the field's region (or a "
-          "--situations spec) "
+          "--situations spec; `balls`: where the ball lies, as --balls) "
           "with the learned model; oracle: also run the teacher on each. Releases the GIL.");
 }
 

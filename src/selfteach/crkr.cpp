@@ -59,6 +59,8 @@ CrkrResult crkr_learn(const system::System& system, const field::Situations& reg
                       const CrkrOptions& options) {
   options.validate();
   region.validate(system.field(), "crkr region");
+  if (region.balls)
+    throw InputError("crkr: plays from the tee; this region has a ball region (not supported)");
   const auto& field = system.field();
   const auto& cfg = system.config();
   CrkrResult res;

@@ -151,6 +151,10 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
                            const std::function<void(int, int)>& progress) {
   options.validate();
   region.validate(system.field(), "self-teach region");
+  if (region.balls)
+    throw InputError(
+        "self-teach: plays from the tee; this region has a ball region (not "
+        "supported: collect and evaluate take it)");
   const auto& field = system.field();
   HindsightRules rules;
   rules.learn_speed = region.learn_speed;

@@ -103,21 +103,6 @@ robot::Stance putt_stance(const System& system, std::array<double, 2> ball,
   return stance_for(system, ball, aim ? *aim : std::atan2(hole[1] - ball[1], hole[0] - ball[0]));
 }
 
-void check_ball_position(const field::Field& field, std::array<double, 2> ball,
-                         const std::string& what) {
-  const auto& b = field.bounds;
-  const double r = field.ball.radius;
-  if (!std::isfinite(ball[0]) || !std::isfinite(ball[1]) || ball[0] < b[0] + r ||
-      ball[0] > b[1] - r || ball[1] < b[2] + r || ball[1] > b[3] - r)
-    throw InputError(
-        fmt::format("{}: expected a ball on the lane [{}, {}] x [{}, {}], got ({}, {})", what,
-                    b[0] + r, b[1] - r, b[2] + r, b[3] - r, ball[0], ball[1]));
-  for (std::size_t i = 0; i < field.obstacles.size(); ++i)
-    if (field.obstacles[i].distance(ball) < r)
-      throw InputError(fmt::format("{}: the ball at ({}, {}) lies inside obstacle {} ({})", what,
-                                   ball[0], ball[1], i, field::to_string(field.obstacles[i].type)));
-}
-
 SystemData::SystemData(const System& system)
     : arm(system.arm_world().make_data()),
       ball(system.ball_world().make_data()),

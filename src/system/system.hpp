@@ -123,9 +123,6 @@ sim::PuttOutcome ball_putt(const System& system, SystemData& data, std::array<do
                            double angle, double speed, double record_interval = 0.0,
                            std::optional<std::array<double, 2>> start = std::nullopt);
 
-/// Throws InputError naming `what` unless a ball at `ball` lies on the lane, a ball radius from
-/// its borders and clear of every obstacle.
-void check_ball_position(const field::Field& field, std::array<double, 2> ball,
-                         const std::string& what);
+using field::check_ball_position;
 
 }  // namespace mg::system

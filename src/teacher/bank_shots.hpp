@@ -16,8 +16,9 @@ struct BankShot {
   double path_length = 0.0;   ///< [m]
 };
 
-/// The bank shots off the four borders whose two legs are clear of obstacles, shortest first;
-/// `arrival` [m/s] is the speed the ball should reach the hole with.
-std::vector<BankShot> bank_shots(const field::Field& f, std::array<double, 2> hole, double arrival);
+/// The bank shots from `ball` off the four borders whose two legs are clear of obstacles,
+/// shortest first; `arrival` [m/s] is the speed the ball should reach the hole with.
+std::vector<BankShot> bank_shots(const field::Field& f, std::array<double, 2> ball,
+                                 std::array<double, 2> hole, double arrival);
 
 }  // namespace mg::teacher

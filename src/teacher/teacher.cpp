@@ -38,21 +38,29 @@ struct Probe {
 /// The search state of one situation.
 class Search {
  public:
-  Search(const system::System& system, system::SystemData& data, std::array<double, 2> hole,
+  Search(const system::System& system, system::SystemData& data, const field::Situation& situation,
          const TeacherOptions& options)
-      : sys_(system), data_(data), hole_(hole), opt_(options) {
+      : sys_(system),
+        data_(data),
+        hole_(situation.hole),
+        ball_(situation.ball),
+        on_tee_(situation.ball == system.field().tee),
+        opt_(options) {
     const auto& f = system.field();
-    dx_ = hole[0] - f.tee[0];
-    dy_ = hole[1] - f.tee[1];
+    const auto hole = hole_;
+    if (!on_tee_) stance_ = system::stance_for(system, ball_, 0.0);
+    dx_ = hole[0] - ball_[0];
+    dy_ = hole[1] - ball_[1];
     distance_ = std::hypot(dx_, dy_);
     a_roll_ = 5.0 / 7.0 * f.rolling_resistance * kGravity;
     vt_ = arrival_speed(f, options.strategy);
     radius_ = 0.5 * f.hole.diameter;
-    const LaunchGuess prior = prior_launch(f, hole, vt_);
+    const LaunchGuess prior = prior_launch(f, ball_, hole, vt_);
     aim_ = prior.angle;
     prior_launch_speed_ = prior.speed;
     lateral_gain_ = -distance_;
-    if (field::line_blocked(f, f.tee, hole, f.ball.radius)) banks_ = bank_shots(f, hole, vt_);
+    if (field::line_blocked(f, ball_, hole, f.ball.radius))
+      banks_ = bank_shots(f, ball_, hole, vt_);
     if (!banks_.empty()) {  // the shortest bank until a search tries the others
       aim_ = banks_.front().angle;
       distance_ = lateral_gain_ = banks_.front().path_length;
@@ -73,7 +81,8 @@ class Search {
 
   Probe ball(double angle, double speed) {
     ++ex_.ball_putts;
-    return residual(system::ball_putt(sys_, data_, hole_, angle, speed));
+    return residual(system::ball_putt(sys_, data_, hole_, angle, speed, 0.0,
+                                      on_tee_ ? std::nullopt : std::optional(ball_)));
   }
 
   std::pair<double, double> clamp_club(double angle, double speed) const {
@@ -86,7 +95,9 @@ class Search {
 
   Probe full(double angle, double speed) {
     ++ex_.full_putts;
-    const control::FullPuttResult r = system::arm_putt(sys_, data_, hole_, angle, speed);
+    control::FullPuttOptions o;
+    o.stance = stance_;  // aim 0: the stance's angles are world angles
+    const control::FullPuttResult r = system::arm_putt(sys_, data_, hole_, angle, speed, o);
     if (!r.hit || r.hit_refused) return {};
     Probe p = residual(r.outcome);
     p.launch_angle = r.launch.angle;
@@ -317,6 +328,7 @@ class Search {
 
   Example run() {
     ex_.hole = hole_;
+    ex_.ball = ball_;
     std::optional<Eigen::Vector2d> club;
     if (opt_.learn_speed && opt_.use_hint) {
       club = hinted_solve();
@@ -332,7 +344,9 @@ class Search {
  private:
   const system::System& sys_;
   system::SystemData& data_;
-  std::array<double, 2> hole_;
+  std::array<double, 2> hole_, ball_;
+  bool on_tee_ = true;  ///< the identity stance; else the base stands beside the ball (aim 0)
+  robot::Stance stance_;
   TeacherOptions opt_;
   double dx_ = 0, dy_ = 0, distance_ = 1, aim_ = 0, a_roll_ = 0, vt_ = 0.5, radius_ = 0.054;
   double prior_launch_speed_ = 1.0;
@@ -376,9 +390,14 @@ double arrival_speed(const field::Field& field, Strategy strategy) {
 }
 
 LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> hole, double arrival) {
-  const double dx = hole[0] - field.tee[0], dy = hole[1] - field.tee[1];
+  return prior_launch(field, field.tee, hole, arrival);
+}
+
+LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> ball,
+                         std::array<double, 2> hole, double arrival) {
+  const double dx = hole[0] - ball[0], dy = hole[1] - ball[1];
   const double a_roll = 5.0 / 7.0 * field.rolling_resistance * kGravity;
-  const double climb = field.height(hole[0], hole[1]) - field.height(field.tee[0], field.tee[1]);
+  const double climb = field.height(hole[0], hole[1]) - field.height(ball[0], ball[1]);
   const double v2 =
       arrival * arrival + 2.0 * a_roll * std::hypot(dx, dy) + 10.0 / 7.0 * kGravity * climb;
   return {std::atan2(dy, dx), 7.0 / 5.0 * std::sqrt(std::max(v2, 0.04))};
@@ -386,9 +405,15 @@ LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> hole, 
 
 Example teach(const system::System& system, system::SystemData& data, std::array<double, 2> hole,
               const TeacherOptions& options) {
+  return teach(system, data, field::Situation{system.field().tee, hole}, options);
+}
+
+Example teach(const system::System& system, system::SystemData& data,
+              const field::Situation& situation, const TeacherOptions& options) {
   options.validate();
-  field::check_hole_position(system.field(), hole);
-  return Search(system, data, hole, options).run();
+  field::check_hole_position(system.field(), situation.hole);
+  field::check_ball_position(system.field(), situation.ball, "teacher: ball");
+  return Search(system, data, situation, options).run();
 }
 
 }  // namespace mg::teacher

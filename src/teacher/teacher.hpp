@@ -66,6 +66,7 @@ TeacherOptions options_for(const field::Situations& region, const std::string& s
 /// One collected example (a row of the teacher's data set).
 struct Example {
   std::array<double, 2> hole{0, 0};  ///< [m]
+  std::array<double, 2> ball{0, 0};  ///< [m] where the ball lay (the tee unless a ball region)
   bool found = false;                ///< a sinking putt with a verified neighbourhood (or margin 0)
   double angle = 0.0;                ///< [rad] hitting angle theta
   double speed = 0.0;                ///< [m/s] club speed v
@@ -78,9 +79,13 @@ struct Example {
   int ball_putts = 0;                ///< ball-only putts this example cost
 };
 
-/// Finds an example for `hole` (see the file comment).
+/// Finds an example for `hole`, the ball on the tee (see the file comment).
 Example teach(const system::System& system, system::SystemData& data, std::array<double, 2> hole,
               const TeacherOptions& options);
+/// The same for the ball at situation.ball: the base stands beside it as beside the tee (the
+/// stance rule with aim 0, system::stance_for), so angles are world angles as from the tee.
+Example teach(const system::System& system, system::SystemData& data,
+              const field::Situation& situation, const TeacherOptions& options);
 
 /// The target arrival speed [m/s] of `strategy` for the field's hole.
 double arrival_speed(const field::Field& field, Strategy strategy);
@@ -94,5 +99,8 @@ struct LaunchGuess {
   double speed = 0.0;  ///< [m/s] ball launch speed
 };
 LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> hole, double arrival);
+/// The same from a ball at `ball` (not the tee).
+LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> ball,
+                         std::array<double, 2> hole, double arrival);
 
 }  // namespace mg::teacher

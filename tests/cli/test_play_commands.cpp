@@ -81,6 +81,10 @@ TEST(PlayCommands, BadInputsGetOneLineAndExitTwo) {
                         "--situations 'list:': list.points");
   expect_one_line_error("collect --field flat --situations line:2,0:2,5:3 -o " + out.string(),
                         "outside the lane");
+  expect_one_line_error("collect --field flat --balls box:0,0.4:-0.2 -o " + out.string(),
+                        "--balls 'box:0,0.4:-0.2'");
+  expect_one_line_error("collect --field flat --balls list:0.5,0.7 -o " + out.string(),
+                        "expected a ball on the lane");
   expect_one_line_error("sweep --field flat --angles 0:0.1 --speeds 1:2:3 -o " + out.string(),
                         "LO:HI:N");
   expect_one_line_error("sweep --field flat --angles 0:0.1:3 --speeds 1:9:3 -o " + out.string(),

@@ -167,6 +167,61 @@ TEST(Evaluate, CollectTrainEvaluateOnASmallCase) {
   fs::remove(data);
 }
 
+// Issue 19: a flat lane is translation-invariant, so a model of xi = hole - ball learned from the
+// tee plays from balls it never saw; collect writes the ball of each example.
+TEST(Evaluate, AFlatModelLearnedFromTheTeePlaysFromAnywhere) {
+  const auto data = temp("tee.csv");
+  const field::Field& f = flat().field();
+  const field::Situations tee_holes =
+      field::parse_situations_spec("grid:1.5,2.2:-0.2,0.3:3,3", f.situations);
+  CollectOptions o;
+  o.threads = 2;
+  collect(flat(), tee_holes.collection_points(), o, data);
+  const CsvTable t = read_csv(data);
+  ASSERT_GE(t.num_rows(), 8u);
+  EXPECT_THROW(t.column_index("ball_x"), InputError);  // every ball on the tee: no ball columns
+  const learning::Model model =
+      learning::train(learning::dataset_from_table(t, {"xi_x", "xi_y"}, {"angle", "speed"}),
+                      learning::TrainOptions{});
+
+  field::Situations anywhere =
+      field::parse_situations_spec("box:1.75,2.15:-0.1,0.2:2,2", f.situations);
+  field::Region balls;
+  balls.shape = field::RegionShape::kBox;
+  balls.x_range = {0.0, 0.3};
+  balls.y_range = {-0.1, 0.1};
+  balls.counts = {2, 2};
+  anywhere.balls = balls;
+  anywhere.validate(f, "test");
+  EXPECT_EQ(anywhere.learner_inputs(), (std::vector<std::string>{"xi_x", "xi_y"}));
+  EvaluateOptions eo;
+  eo.situations = 8;
+  eo.seed = 5;
+  eo.oracle = false;
+  const Evaluation e = evaluate_model(flat(), model, anywhere, eo);
+  int off_tee = 0;
+  for (const auto& r : e.rows) off_tee += r.ball != f.tee;
+  EXPECT_EQ(off_tee, 8);
+  EXPECT_GE(e.sunk, 7) << evaluation_csv(e, f);
+  const CsvTable rows = parse_csv(evaluation_csv(e, f), "evaluation");
+  const auto bx = rows.column_index("ball_x");
+  const auto xi = rows.column_index("xi_x");
+  const auto hx = rows.column_index("hole_x");
+  for (const auto& row : rows.rows) EXPECT_DOUBLE_EQ(row[xi], row[hx] - row[bx]);
+
+  // Collecting from balls off the tee: the file has the balls, xi is hole - ball.
+  const auto from_balls = temp("balls.csv");
+  const std::vector<field::Situation> two{{{0.2, 0.1}, {2.0, 0.1}}, {{0.3, -0.1}, {1.9, 0.0}}};
+  collect(flat(), two, o, from_balls);
+  const CsvTable b = read_csv(from_balls);
+  ASSERT_EQ(b.num_rows(), 2u);
+  EXPECT_EQ(b.rows[0][b.column_index("ball_x")], 0.2);
+  EXPECT_EQ(b.rows[1][b.column_index("ball_y")], -0.1);
+  EXPECT_NEAR(b.rows[1][b.column_index("xi_x")], 1.6, 1e-12);
+  fs::remove(data);
+  fs::remove(from_balls);
+}
+
 TEST(Evaluate, ModelsThatCannotPlayAreRefused) {
   learning::Model m;
   m.input_names = {"distance"};

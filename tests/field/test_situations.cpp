@@ -167,5 +167,86 @@ TEST(Situations, BoundsHoldEverySampleAndEveryCollectionPoint) {
   EXPECT_THROW(region_from_spec(f, "box:1.5,9:-0.3,0.3:3,3"), InputError);  // off the lane
 }
 
+// Issue 19: situations are (ball, hole) pairs; `ball:` gives where the ball may lie.
+TEST(Situations, ABallRegionPairsEveryBallWithEveryHole) {
+  const Field f =
+      parse(with_situations("situations:\n  line: {from: [2.0, -0.2], to: [2.0, 0.2], count: 3}\n"
+                            "  ball: {grid: {x: [0.0, 0.4], y: [-0.2, 0.2], counts: [2, 3]}}\n"));
+  const Situations& s = f.situations;
+  ASSERT_TRUE(s.balls.has_value());
+  // A plane without obstacles is translation-invariant: xi = hole - ball says it all.
+  EXPECT_FALSE(s.ball_inputs);
+  EXPECT_EQ(s.learner_inputs(), (std::vector<std::string>{"xi_x", "xi_y"}));
+  const auto c = s.collection_situations(f);
+  ASSERT_EQ(c.size(), 6u * 3u);
+  EXPECT_EQ(c.front().ball, (std::array<double, 2>{0.0, -0.2}));  // ball-major
+  EXPECT_EQ(c[1].ball, c.front().ball);
+  EXPECT_EQ(c[1].hole, (std::array<double, 2>{2.0, 0.0}));
+  EXPECT_DOUBLE_EQ(situation_input(f, "xi_x", c[1]), 2.0);
+  EXPECT_DOUBLE_EQ(situation_input(f, "xi_y", c[1]), 0.2);
+  EXPECT_DOUBLE_EQ(situation_input(f, "ball_y", c[1]), -0.2);
+  // Samples: the holes are those of the region without balls (the same streams), the balls lie
+  // in the ball region and differ from sample to sample.
+  Situations tee_only = s;
+  tee_only.balls.reset();
+  const auto with = s.sample_situations(f, 50, 7), without = tee_only.sample_situations(f, 50, 7);
+  const auto holes = s.sample(50, 7);
+  double spread = 0.0;
+  for (std::size_t i = 0; i < with.size(); ++i) {
+    EXPECT_EQ(with[i].hole, holes[i]);
+    EXPECT_EQ(without[i].hole, holes[i]);
+    EXPECT_EQ(without[i].ball, f.tee);
+    EXPECT_GE(with[i].ball[0], 0.0);
+    EXPECT_LE(with[i].ball[0], 0.4);
+    EXPECT_GE(with[i].ball[1], -0.2);
+    EXPECT_LE(with[i].ball[1], 0.2);
+    spread = std::max(spread, std::abs(with[i].ball[0] - with[0].ball[0]));
+  }
+  EXPECT_GT(spread, 0.1);
+}
+
+TEST(Situations, OnASlopedLaneTheLearnersAlsoTakeTheBall) {
+  Field f =
+      parse(with_situations("situations:\n  grid: {x: [1.8, 2.2], y: [-0.1, 0.1], counts: [2, 2]}\n"
+                            "  ball: {list: {points: [[0.0, 0.0], [0.3, 0.2]]}}\n"));
+  EXPECT_FALSE(f.situations.ball_inputs);
+  const std::string hill = R"(
+format_version: 1
+name: hill
+lane: {bounds: [-0.3, 2.7, -0.6, 0.6]}
+tee: [0.0, 0.0]
+hole: {position: [2.0, 0.0]}
+rolling_resistance: 0.131
+surface:
+  - {type: plane}
+  - {type: hill, crest: [1.0, 0.0], direction: [1.0, 0.0], height: 0.05, half_width: 0.4}
+situations:
+  grid: {x: [1.8, 2.2], y: [-0.1, 0.1], counts: [2, 2]}
+  ball: {list: {points: [[0.0, 0.0], [0.3, 0.2]]}}
+)";
+  f = parse(hill);
+  EXPECT_FALSE(translation_invariant(f));
+  EXPECT_TRUE(f.situations.ball_inputs);
+  EXPECT_EQ(f.situations.learner_inputs(),
+            (std::vector<std::string>{"xi_x", "xi_y", "ball_x", "ball_y"}));
+  EXPECT_EQ(f.situations.collection_situations(f).size(), 8u);
+}
+
+TEST(Situations, BallRegionErrorsNameTheBall) {
+  expect_error(
+      "situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, ball: {line: {from: [0, 0], to: "
+      "[0, 0.9], count: 3}}}\n",
+      "ball");
+  expect_error(
+      "situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, ball: {grid: {x: [0.2, 0.1], y: "
+      "[0, 0.1], counts: [2, 2]}}}\n",
+      "[low, high]");
+  expect_error("situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, ball: {}}\n",
+               "exactly one of line, grid, box, list");
+  expect_error(
+      "situations: {list: {points: [[1.0, 0.0]]}, ball: {list: {points: [[1.0, 0.01]]}}}\n",
+      "covers every ball");
+}
+
 }  // namespace
 }  // namespace mg::field

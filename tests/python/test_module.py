@@ -209,6 +209,33 @@ def test_fields():
     assert np.array_equal(s, f.situations.sample(5, 3))
 
 
+def test_a_ball_region_gives_ball_hole_pairs(tmp_path):
+    text = (ROOT / "data" / "fields" / "flat.yaml").read_text()
+    start = text.index("situations:")
+    end = text.find("\n", text.index("strategy:", start))
+    rest = "" if end < 0 else text[end + 1:]
+    path = tmp_path / "anywhere.yaml"
+    path.write_text(text[:start] + (
+        "situations:\n"
+        "  grid: {x: [1.6, 2.2], y: [-0.2, 0.3], counts: [2, 2]}\n"
+        "  ball: {list: {points: [[0.0, 0.0], [0.3, 0.1], [0.2, -0.1]]}}\n") + rest)
+    f = minigolf.Field.load(str(path))
+    region = f.situations
+    assert tuple(region.ball_bounds) == (0.0, 0.3, -0.1, 0.1)
+    assert region.learner_inputs == ["xi_x", "xi_y"]  # flat: xi = hole - ball is enough
+    pairs = f.collection_situations(region)
+    assert pairs.shape == (12, 4)
+    assert np.array_equal(pairs[4, :2], [0.3, 0.1]) and np.array_equal(pairs[4, 2:], [1.6, -0.2])
+    drawn = f.sample_situations(region, 6, seed=2)
+    assert drawn.shape == (6, 4)
+    assert np.array_equal(drawn[:, 2:], region.sample(6, 2))  # the holes of a tee-only region
+    flat = minigolf.Field.load("flat")
+    assert flat.situations.ball_bounds is None
+    assert tuple(flat.region("", balls="list:0.3,0.1").ball_bounds) == (0.3, 0.3, 0.1, 0.1)
+    with pytest.raises(ValueError, match="--balls"):
+        flat.region("", balls="list:0.3,0.9")
+
+
 def test_learners_train_predict_and_files(tmp_path):
     x, y = minigolf.load_dataset(str(ROOT / "data" / "datasets" / "flat.csv"))
     assert x.shape[1] == 2 and y.shape[1] == 2 and x.shape[0] == y.shape[0]

@@ -33,6 +33,31 @@ TEST(Teacher, FindsASinkingPuttOnTheFlatFieldInAHandfulOfPutts) {
   EXPECT_NEAR(e.angle, std::atan2(0.1, 2.0), 0.02);
 }
 
+// Issue 19: a situation is (ball, hole). From a ball off the tee the base stands beside the ball
+// facing as at the tee, so the example's angle is a world angle along hole - ball.
+TEST(Teacher, TeachesFromABallOffTheTee) {
+  system::SystemData data(flat());
+  const field::Situation s{{0.4, -0.2}, {2.0, 0.1}};
+  const Example e = teach(flat(), data, s, TeacherOptions{});
+  ASSERT_TRUE(e.found);
+  EXPECT_EQ(e.ball, s.ball);
+  EXPECT_EQ(e.hole, s.hole);
+  EXPECT_NEAR(e.angle, std::atan2(0.3, 1.6), 0.02);
+  control::FullPuttOptions o;
+  o.stance = system::stance_for(flat(), s.ball, 0.0);
+  const auto out = system::arm_putt(flat(), data, e.hole, e.angle, e.speed, o).outcome;
+  EXPECT_TRUE(out.sunk);
+  // The same putt from the tee misses: the example is the ball's, not the tee's.
+  EXPECT_FALSE(system::arm_putt(flat(), data, e.hole, e.angle, e.speed).outcome.sunk);
+  // A ball off the lane is refused, naming it.
+  try {
+    teach(flat(), data, field::Situation{{0.4, 0.9}, {2.0, 0.1}}, TeacherOptions{});
+    ADD_FAILURE() << "a ball off the lane was accepted";
+  } catch (const InputError& err) {
+    EXPECT_NE(std::string(err.what()).find("ball"), std::string::npos) << err.what();
+  }
+}
+
 TEST(Teacher, ABlockedLineIsPlayedOffABorder) {
   // bank-shot: a block between the tee and the hole; the bank off the +y border is the one the
   // fixed arm's hitting angles reach (up to 0.6 rad).
