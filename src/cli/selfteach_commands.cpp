@@ -30,7 +30,7 @@ namespace {
 void add_self_teach(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string situations, strategy, log, out, prior;
+    std::string situations, balls, strategy, log, out, prior;
     int budget = 0;
     int batch = 1;
     double arrival = 0.0;
@@ -51,6 +51,9 @@ void add_self_teach(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--situations", a->situations,
                   "Region instead of the field's (as collect --situations)");
+  cmd->add_option("--balls", a->balls,
+                  "Where the ball lies instead of the field's (as collect --balls): it chooses "
+                  "(ball, hole) situations and learns the region's inputs");
   cmd->add_option("--strategy", a->strategy,
                   "min-speed | min-angle (default: the field's situations.strategy)");
   cmd->add_option("--log", a->log, "Also write one CSV row per putt here");
@@ -77,21 +80,24 @@ void add_self_teach(CLI::App& app) {
     o.validate();
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
                              load_plant_arg(a->sys.plant));
-    field::Situations region = field::region_from_spec(sys.field(), a->situations);
+    field::Situations region = field::region_from_spec(sys.field(), a->situations, a->balls);
     if (!a->strategy.empty())
       region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));
     Progress bar("self-teach", o.budget);
     const auto r = selfteach::self_teach(sys, region, o, [&](int done, int) { bar.update(done); });
     bar.finish();
     if (!a->log.empty()) {
+      const bool balls = region.balls.has_value();  // the balls' columns (last) only then
       std::string csv =
           "index,target_x,target_y,angle,speed,hit,sunk,closest_approach,launch_angle,launch_speed,"
-          "labels,label_distance\n";
+          "labels,label_distance";
+      csv += balls ? ",ball_x,ball_y\n" : "\n";
       for (std::size_t i = 0; i < r.putts.size(); ++i) {
         const auto& p = r.putts[i];
-        csv += fmt::format("{},{},{},{},{},{:d},{:d},{},{},{},{},{}\n", i, p.target[0], p.target[1],
+        csv += fmt::format("{},{},{},{},{},{:d},{:d},{},{},{},{},{}", i, p.target[0], p.target[1],
                            p.angle, p.speed, p.hit, p.sunk, p.closest_approach, p.launch_angle,
                            p.launch_speed, p.labels, p.label_distance);
+        csv += balls ? fmt::format(",{},{}\n", p.ball[0], p.ball[1]) : "\n";
       }
       write_file_atomic(a->log, csv);
     }

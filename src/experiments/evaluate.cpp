@@ -266,11 +266,11 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
       po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
       control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
-      putts.push_back(selfteach::record_putt(r.hole, a, v, p));
+      putts.push_back(selfteach::record_putt({field.tee, r.hole}, a, v, p));
       if (p.hit) {
-        const auto ls = selfteach::hindsight_labels(p.outcome.trajectory, r.hole, hole_radius,
-                                                    rolling_decel, region, margin, a, v,
-                                                    static_cast<int>(putts.size()) - 1, rules);
+        const auto ls = selfteach::hindsight_labels(p.outcome.trajectory, field.tee, r.hole,
+                                                    hole_radius, rolling_decel, region, margin, a,
+                                                    v, static_cast<int>(putts.size()) - 1, rules);
         added = static_cast<int>(ls.size());
         labels.insert(labels.end(), ls.begin(), ls.end());
       }
@@ -342,8 +342,8 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       if (p.hit) {
         const auto labels =
-            selfteach::hindsight_labels(p.outcome.trajectory, r.hole, hole_radius, rolling_decel,
-                                        region, margin, a, v, i, rules);
+            selfteach::hindsight_labels(p.outcome.trajectory, field.tee, r.hole, hole_radius,
+                                        rolling_decel, region, margin, a, v, i, rules);
         for (const auto& l : labels) {
           Eigen::VectorXd x(out.learned.num_inputs());
           for (int col = 0; col < out.learned.num_inputs(); ++col)

@@ -28,7 +28,7 @@ void CrkrOptions::validate() const {
 
 std::array<double, 3> CrkrPolicy::act(const field::Field& field, const field::Situations& region,
                                       std::array<double, 2> hole) const {
-  auto a = prior_club(field, region, hole, arrival, bias, ratio);
+  auto a = prior_club(field, region, {field.tee, hole}, arrival, bias, ratio);
   const auto n = static_cast<Eigen::Index>(holes.size());
   if (n == 0) return {a[0], a[1], std::sqrt(1.0 + lambda)};
   const auto kernel = [&](std::array<double, 2> p, std::array<double, 2> q) {
@@ -88,7 +88,7 @@ CrkrResult crkr_learn(const system::System& system, const field::Situations& reg
     angle = std::clamp(angle, cfg.angle_min + 1e-6, cfg.angle_max - 1e-6);
     speed = std::clamp(speed, cfg.speed_min, cfg.speed_max);
     const auto r = system::arm_putt(system, data, hole, angle, speed);
-    const PuttRecord p = record_putt(hole, angle, speed, r);
+    const PuttRecord p = record_putt({field.tee, hole}, angle, speed, r);
     res.sunk += p.sunk;
     res.putts.push_back(p);
     // The residuals are re-expressed against the prior with the launch relation as now measured.
@@ -104,7 +104,8 @@ CrkrResult crkr_learn(const system::System& system, const field::Situations& reg
     pol.costs.push_back(cost);
     pol.residuals.clear();
     for (const auto& q : res.putts) {
-      const auto prior = prior_club(field, region, q.target, pol.arrival, pol.bias, pol.ratio);
+      const auto prior =
+          prior_club(field, region, {field.tee, q.target}, pol.arrival, pol.bias, pol.ratio);
       pol.residuals.push_back({q.angle - prior[0], q.speed - prior[1]});
     }
     while (next < checkpoints.size() && checkpoints[next] <= e + 1)

@@ -64,10 +64,10 @@ std::size_t usable_samples(const std::vector<sim::BallSample>& t, std::array<dou
 }  // namespace
 
 std::vector<Label> hindsight_labels(const std::vector<sim::BallSample>& path,
-                                    std::array<double, 2> real_hole, double hole_radius,
-                                    double rolling_decel, const field::Situations& region,
-                                    double margin, double angle, double speed, int putt,
-                                    const HindsightRules& rules) {
+                                    std::array<double, 2> ball, std::array<double, 2> real_hole,
+                                    double hole_radius, double rolling_decel,
+                                    const field::Situations& region, double margin, double angle,
+                                    double speed, int putt, const HindsightRules& rules) {
   rules.validate();
   std::vector<Label> labels;
   std::size_t n = usable_samples(path, real_hole, hole_radius);
@@ -96,6 +96,7 @@ std::vector<Label> hindsight_labels(const std::vector<sim::BallSample>& path,
   const auto label_at = [&](const sim::BallSample& a, const sim::BallSample& b, double w) {
     Label l;
     l.hole = {a.x + w * (b.x - a.x), a.y + w * (b.y - a.y)};
+    l.ball = ball;
     l.angle = angle;
     l.speed = speed;
     l.arrival_speed = horizontal_speed(a) + w * (horizontal_speed(b) - horizontal_speed(a));

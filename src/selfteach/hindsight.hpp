@@ -22,6 +22,7 @@ namespace mg::selfteach {
 /// A hindsight label: the putt (angle, speed) would reach `hole` at `arrival_speed`.
 struct Label {
   std::array<double, 2> hole{0, 0};  ///< [m]
+  std::array<double, 2> ball{0, 0};  ///< [m] where the putt's ball lay (the situation's ball)
   double angle = 0.0;                ///< [rad] hitting angle of the putt
   double speed = 0.0;                ///< [m/s] club speed of the putt
   double arrival_speed = 0.0;        ///< [m/s] ball speed there
@@ -46,15 +47,15 @@ double label_margin(const field::Situations& region);
 /// Where labels may lie: the region's bounds grown by `margin` [m] on every side.
 bool in_label_zone(const field::Situations& region, std::array<double, 2> p, double margin);
 
-/// The labels of one putt. `trajectory`: its ball samples (time order) from the launch on;
-/// `real_hole` and `hole_radius` [m]: where the hole was. The path is used until the ball's centre
-/// first comes within `hole_radius` of it; from there it is continued straight for 2 hole radii
-/// plus 2 cm, slowing at `rolling_decel` [m/s^2] (the real hole's own neighbourhood, so a putt that
-/// sank labels its own target). Labels lie within `margin` of the region.
+/// The labels of one putt from `ball` [m]. `trajectory`: its ball samples (time order) from the
+/// launch on; `real_hole` and `hole_radius` [m]: where the hole was. The path is used until the
+/// ball's centre first comes within `hole_radius` of it; from there it is continued straight for 2
+/// hole radii plus 2 cm, slowing at `rolling_decel` [m/s^2] (the real hole's own neighbourhood, so
+/// a putt that sank labels its own target). Labels lie within `margin` of the region.
 std::vector<Label> hindsight_labels(const std::vector<sim::BallSample>& trajectory,
-                                    std::array<double, 2> real_hole, double hole_radius,
-                                    double rolling_decel, const field::Situations& region,
-                                    double margin, double angle, double speed, int putt,
-                                    const HindsightRules& rules);
+                                    std::array<double, 2> ball, std::array<double, 2> real_hole,
+                                    double hole_radius, double rolling_decel,
+                                    const field::Situations& region, double margin, double angle,
+                                    double speed, int putt, const HindsightRules& rules);
 
 }  // namespace mg::selfteach

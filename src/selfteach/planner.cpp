@@ -13,6 +13,12 @@ namespace {
 
 constexpr double kPseudoCover = 0.02;  ///< [m] a real label this close replaces a pseudo-label
 
+/// [m] between a label's situation and (ball, hole): the holes' distance when the balls agree.
+double situation_distance(const Label& l, std::array<double, 2> ball, std::array<double, 2> hole) {
+  return std::hypot(std::hypot(l.hole[0] - hole[0], l.hole[1] - hole[1]),
+                    std::hypot(l.ball[0] - ball[0], l.ball[1] - ball[1]));
+}
+
 int output_index(const learning::Model& m, const char* name) {
   for (int o = 0; o < m.num_outputs(); ++o)
     if (m.output_names[static_cast<std::size_t>(o)] == name) return o;
@@ -22,11 +28,16 @@ int output_index(const learning::Model& m, const char* name) {
 }  // namespace
 
 Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::string>& inputs,
-                          std::array<double, 2> hole) {
+                          const field::Situation& situation) {
   Eigen::VectorXd x(static_cast<Eigen::Index>(inputs.size()));
   for (std::size_t c = 0; c < inputs.size(); ++c)
-    x(static_cast<Eigen::Index>(c)) = field::situation_input(field, inputs[c], hole);
+    x(static_cast<Eigen::Index>(c)) = field::situation_input(field, inputs[c], situation);
   return x;
+}
+
+Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::string>& inputs,
+                          std::array<double, 2> hole) {
+  return input_row(field, inputs, field::Situation{field.tee, hole});
 }
 
 std::optional<stats::GpHyperparameters> fixed_residual_hyper(const field::Situations& region,
@@ -107,6 +118,7 @@ void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> la
     if (p.hit && p.sunk) {
       Label l;
       l.hole = p.target;
+      l.ball = p.ball;
       l.angle = p.angle;
       l.speed = p.speed;
       l.arrival_speed = arrival_;
@@ -119,8 +131,7 @@ void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> la
     if (!p.hit) continue;
     bool covered = false;
     for (std::size_t k = 0; k < real && !covered; ++k)
-      covered = std::hypot(labels[k].hole[0] - p.target[0], labels[k].hole[1] - p.target[1]) <
-                kPseudoCover;
+      covered = situation_distance(labels[k], p.ball, p.target) < kPseudoCover;
     if (covered) continue;
     // With a model prior a putt that sank is moved by its Newton step towards the middle of the
     // window by at most the window's scale: the cup spoils its path (a fast ball that drops in
@@ -139,8 +150,9 @@ void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> la
   Eigen::MatrixXd r(n, outputs_);
   for (Eigen::Index i = 0; i < n; ++i) {
     const Label& l = labels[static_cast<std::size_t>(i)];
-    x.row(i) = input_row(sys_.field(), inputs_, l.hole).transpose();
-    const auto [a0, v0] = prior(l.hole);
+    const field::Situation s{l.ball, l.hole};
+    x.row(i) = input_row(sys_.field(), inputs_, s).transpose();
+    const auto [a0, v0] = prior(s);
     r(i, 0) = l.angle - a0;
     if (outputs_ == 2) r(i, 1) = l.speed - v0;
   }
@@ -161,9 +173,11 @@ void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> la
 
 Label Planner::pseudo_label(const PuttRecord& p, int index) const {
   const auto& f = sys_.field();
-  const double distance = std::max(0.1, std::hypot(p.target[0] - f.tee[0], p.target[1] - f.tee[1]));
+  const double distance =
+      std::max(0.1, std::hypot(p.target[0] - p.ball[0], p.target[1] - p.ball[1]));
   Label l;
   l.hole = p.target;
+  l.ball = p.ball;
   l.angle = p.angle + std::clamp(p.approach_lateral / distance, -0.05, 0.05);
   l.speed = p.speed;
   l.putt = index;
@@ -180,10 +194,10 @@ Label Planner::pseudo_label(const PuttRecord& p, int index) const {
   return l;
 }
 
-std::array<double, 2> Planner::prior(std::array<double, 2> hole) const {
-  if (!prior_model_) return prior_club(sys_.field(), region_, hole, arrival_, bias_, ratio_);
+std::array<double, 2> Planner::prior(const field::Situation& situation) const {
+  if (!prior_model_) return prior_club(sys_.field(), region_, situation, arrival_, bias_, ratio_);
   const auto& m = *prior_model_;
-  const Eigen::MatrixXd q = input_row(sys_.field(), inputs_, hole).transpose();
+  const Eigen::MatrixXd q = input_row(sys_.field(), inputs_, situation).transpose();
   const learning::Predictions p = learning::predict(m, q);
   const int ia = output_index(m, "angle"), is = output_index(m, "speed");
   double v = region_.speed;
@@ -195,10 +209,14 @@ std::array<double, 2> Planner::prior(std::array<double, 2> hole) const {
 }
 
 std::array<double, 3> Planner::plan(std::array<double, 2> hole) const {
-  auto [a, v] = prior(hole);
+  return plan(field::Situation{sys_.field().tee, hole});
+}
+
+std::array<double, 3> Planner::plan(const field::Situation& situation) const {
+  auto [a, v] = prior(situation);
   double score = 1.0;
   if (!gps_.empty()) {
-    const Eigen::VectorXd x = input_row(sys_.field(), inputs_, hole);
+    const Eigen::VectorXd x = input_row(sys_.field(), inputs_, situation);
     const auto pa = stats::gp_predict(gps_[0], x);
     a += pa.mean;
     score = std::sqrt(pa.latent_variance) / kWindowAngle;
@@ -225,14 +243,17 @@ learning::Model Planner::residual_model(const std::vector<Label>& labels, int pu
     if (putts >= 0 && l.putt >= putts) continue;
     bool covered = false;
     for (std::size_t k = 0; k < real && !covered; ++k)
-      covered = std::hypot(use[k].hole[0] - l.hole[0], use[k].hole[1] - l.hole[1]) < kPseudoCover;
+      covered = situation_distance(use[k], l.ball, l.hole) < kPseudoCover;
     if (!covered) use.push_back(l);
   }
   if (use.empty()) return m;  // nothing known yet: the prior as it is
   const auto n = static_cast<Eigen::Index>(use.size());
   Eigen::MatrixXd x(n, static_cast<Eigen::Index>(inputs_.size()));
   for (Eigen::Index i = 0; i < n; ++i)
-    x.row(i) = input_row(sys_.field(), inputs_, use[static_cast<std::size_t>(i)].hole).transpose();
+    x.row(i) = input_row(sys_.field(), inputs_,
+                         field::Situation{use[static_cast<std::size_t>(i)].ball,
+                                          use[static_cast<std::size_t>(i)].hole})
+                   .transpose();
   const learning::Predictions base = learning::predict(m, x);
   learning::Model out;
   out.method = learning::Method::kGpr;

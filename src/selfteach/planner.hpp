@@ -39,7 +39,10 @@ inline constexpr double kWindowSpeed = 0.03;
 /// With a model prior: labels up to this count use the fixed residual hyperparameters.
 inline constexpr int kResidualLabelsToTune = 15;
 
-/// The model's inputs at `hole` (field::situation_input of each name).
+/// The model's inputs at `situation` (field::situation_input of each name).
+Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::string>& inputs,
+                          const field::Situation& situation);
+/// The same with the ball on the tee.
 Eigen::VectorXd input_row(const field::Field& field, const std::vector<std::string>& inputs,
                           std::array<double, 2> hole);
 
@@ -66,10 +69,12 @@ class Planner {
   /// The putt `p` corrected by how it missed its target (the teacher's first Newton step).
   Label pseudo_label(const PuttRecord& p, int index) const;
 
-  /// The prior's club (angle, speed) for a hole.
-  std::array<double, 2> prior(std::array<double, 2> hole) const;
+  /// The prior's club (angle, speed) for a situation.
+  std::array<double, 2> prior(const field::Situation& situation) const;
 
-  /// The putt for a hole, inside the module's envelope, and its uncertainty in window units.
+  /// The putt for a situation, inside the module's envelope, and its uncertainty in window units.
+  std::array<double, 3> plan(const field::Situation& situation) const;
+  /// The same with the ball on the tee.
   std::array<double, 3> plan(std::array<double, 2> hole) const;
 
   /// The residual model over the prior model from what the robot knows for sure after its first

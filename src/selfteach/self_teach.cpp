@@ -53,33 +53,61 @@ double median(std::vector<double> v, double fallback) {
   return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-std::vector<std::array<double, 2>> candidate_targets(const field::Situations& region, int n,
-                                                     std::uint64_t seed) {
+/// The situations a round may aim at: with the ball on the tee the region's centre (not for a
+/// list), its collection points and `n` random holes; with a ball region the centres of both,
+/// the collection situations and `n` random situations.
+std::vector<field::Situation> candidate_targets(const field::Field& field,
+                                                const field::Situations& region, int n,
+                                                std::uint64_t seed) {
   const auto b = region_bounds(region);
-  std::vector<std::array<double, 2>> c;
-  if (region.shape == field::RegionShape::kList) {
-    c = region.points;
-  } else {
-    c.push_back({0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3])});
-    for (const auto& p : region.collection_points()) c.push_back(p);
+  const std::array<double, 2> centre{0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3])};
+  std::vector<field::Situation> c;
+  if (region.balls) {
+    const auto bb = region.balls->bounds();
+    const field::Situation middle{{0.5 * (bb[0] + bb[1]), 0.5 * (bb[2] + bb[3])}, centre};
+    bool playable =
+        std::hypot(centre[0] - middle.ball[0], centre[1] - middle.ball[1]) > field.hole.diameter;
+    for (const auto& o : field.obstacles)
+      playable = playable && o.distance(middle.ball) >= field.ball.radius;
+    if (playable) c.push_back(middle);
+    for (const auto& s : region.collection_situations(field)) c.push_back(s);
+    for (const auto& s : region.sample_situations(field, n, derive_seed(seed, 13))) c.push_back(s);
+    return c;
   }
-  for (const auto& p : region.sample(n, derive_seed(seed, 13))) c.push_back(p);
+  if (region.shape == field::RegionShape::kList) {
+    for (const auto& p : region.points) c.emplace_back(field.tee, p);
+  } else {
+    c.emplace_back(field.tee, centre);
+    for (const auto& p : region.collection_points()) c.emplace_back(field.tee, p);
+  }
+  for (const auto& p : region.sample(n, derive_seed(seed, 13))) c.emplace_back(field.tee, p);
   return c;
+}
+
+double squared_distance(std::array<double, 2> a, std::array<double, 2> b) {
+  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]);
+}
+
+/// [m] between two situations: the holes' distance when the balls agree.
+double distance(const field::Situation& a, const field::Situation& b) {
+  return std::hypot(std::hypot(a.hole[0] - b.hole[0], a.hole[1] - b.hole[1]),
+                    std::hypot(a.ball[0] - b.ball[0], a.ball[1] - b.ball[1]));
 }
 
 }  // namespace
 
 std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,
-                                 std::array<double, 2> hole, double arrival, double bias,
+                                 const field::Situation& situation, double arrival, double bias,
                                  double ratio) {
-  const auto g = teacher::prior_launch(field, hole, arrival);
+  const auto g = teacher::prior_launch(field, situation.ball, situation.hole, arrival);
   return {g.angle - bias, region.learn_speed ? g.speed / ratio : region.speed};
 }
 
-PuttRecord record_putt(std::array<double, 2> target, double angle, double speed,
+PuttRecord record_putt(const field::Situation& situation, double angle, double speed,
                        const control::FullPuttResult& r) {
   PuttRecord p;
-  p.target = target;
+  p.target = situation.hole;
+  p.ball = situation.ball;
   p.angle = angle;
   p.speed = speed;
   p.hit = r.hit;
@@ -130,7 +158,7 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
   d.outputs.resize(n, static_cast<Eigen::Index>(d.output_names.size()));
   for (Eigen::Index i = 0; i < n; ++i) {
     const Label& l = *use[static_cast<std::size_t>(i)];
-    d.inputs.row(i) = input_row(system.field(), d.input_names, l.hole).transpose();
+    d.inputs.row(i) = input_row(system.field(), d.input_names, {l.ball, l.hole}).transpose();
     d.outputs(i, 0) = l.angle;
     if (region.learn_speed) d.outputs(i, 1) = l.speed;
   }
@@ -143,7 +171,9 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
 }
 
 bool replay_label(const system::System& system, system::SystemData& data, const Label& label) {
-  return system::arm_putt(system, data, label.hole, label.angle, label.speed).outcome.sunk;
+  control::FullPuttOptions o;
+  if (label.ball != system.field().tee) o.stance = system::stance_for(system, label.ball, 0.0);
+  return system::arm_putt(system, data, label.hole, label.angle, label.speed, o).outcome.sunk;
 }
 
 SelfTeachResult self_teach(const system::System& system, const field::Situations& region,
@@ -151,10 +181,6 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
                            const std::function<void(int, int)>& progress) {
   options.validate();
   region.validate(system.field(), "self-teach region");
-  if (region.balls)
-    throw InputError(
-        "self-teach: plays from the tee; this region has a ball region (not "
-        "supported: collect and evaluate take it)");
   const auto& field = system.field();
   HindsightRules rules;
   rules.learn_speed = region.learn_speed;
@@ -175,8 +201,8 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
                ? planner.residual_model(res.labels, putts)
                : model_from_labels(system, region, res.labels, putts, options.seed);
   };
-  const auto candidates = candidate_targets(region, options.candidates, options.seed);
-  std::vector<std::array<double, 2>> tried;
+  const auto candidates = candidate_targets(field, region, options.candidates, options.seed);
+  std::vector<field::Situation> tried;
   std::vector<int> checkpoints = options.checkpoints;
   std::sort(checkpoints.begin(), checkpoints.end());
   checkpoints.erase(std::unique(checkpoints.begin(), checkpoints.end()), checkpoints.end());
@@ -187,8 +213,9 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
     res.labels.clear();
     for (std::size_t i = 0; i < res.putts.size(); ++i) {
       auto& p = res.putts[i];
-      const auto ls = hindsight_labels(res.paths[i], p.target, hole_radius, rolling_decel, region,
-                                       margin, p.angle, p.speed, static_cast<int>(i), rules);
+      const auto ls =
+          hindsight_labels(res.paths[i], p.ball, p.target, hole_radius, rolling_decel, region,
+                           margin, p.angle, p.speed, static_cast<int>(i), rules);
       p.labels = static_cast<int>(ls.size());
       p.label_distance =
           ls.empty() ? -1.0 : std::hypot(ls[0].hole[0] - p.target[0], ls[0].hole[1] - p.target[1]);
@@ -199,7 +226,7 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
   while (static_cast<int>(res.putts.size()) < options.budget) {
     const int round = std::min(options.batch, options.budget - static_cast<int>(res.putts.size()));
     // Choose the round's targets before playing any of them.
-    std::vector<std::array<double, 2>> targets;
+    std::vector<field::Situation> targets;
     std::vector<std::array<double, 3>> plans;
     for (int b = 0; b < round; ++b) {
       double best = -1.0;
@@ -210,9 +237,10 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
         auto plan = planner.plan(h);
         double s = plan[2];
         for (const auto& t : tried)
-          if (std::hypot(t[0] - h[0], t[1] - h[1]) < kTriedRadius) s *= 0.5;
+          if (distance(t, h) < kTriedRadius) s *= 0.5;
         for (const auto& t : targets) {
-          const double d2 = (t[0] - h[0]) * (t[0] - h[0]) + (t[1] - h[1]) * (t[1] - h[1]);
+          const double d2 = squared_distance(t.hole, h.hole) +
+                            (t.ball == h.ball ? 0.0 : squared_distance(t.ball, h.ball));
           s *= 1.0 - std::exp(-0.5 * d2 / (kBatchSpread * kBatchSpread));
         }
         if (s > best) {
@@ -230,7 +258,10 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
           const auto k = static_cast<std::size_t>(i);
           control::FullPuttOptions po;
           po.record_interval = options.record_interval;
-          results[k] = system::arm_putt(system, data, targets[k], plans[k][0], plans[k][1], po);
+          if (targets[k].ball != system.field().tee)
+            po.stance = system::stance_for(system, targets[k].ball, 0.0);
+          results[k] =
+              system::arm_putt(system, data, targets[k].hole, plans[k][0], plans[k][1], po);
         });
     for (int b = 0; b < round; ++b) {
       const auto k = static_cast<std::size_t>(b);
@@ -238,8 +269,8 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
       PuttRecord p = record_putt(targets[k], plans[k][0], plans[k][1], r);
       const int index = static_cast<int>(res.putts.size());
       const auto ls =
-          r.hit ? hindsight_labels(r.outcome.trajectory, p.target, hole_radius, rolling_decel,
-                                   region, margin, p.angle, p.speed, index, rules)
+          r.hit ? hindsight_labels(r.outcome.trajectory, p.ball, p.target, hole_radius,
+                                   rolling_decel, region, margin, p.angle, p.speed, index, rules)
                 : std::vector<Label>{};
       p.labels = static_cast<int>(ls.size());
       if (!ls.empty())
@@ -248,7 +279,7 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
       res.labels.insert(res.labels.end(), ls.begin(), ls.end());
       res.putts.push_back(p);
       res.paths.push_back(r.outcome.trajectory);
-      tried.push_back(p.target);
+      tried.push_back(targets[k]);
       if (p.label_distance >= 0.0 && p.label_distance < kOnTarget) {
         ++res.on_target;
         if (p.sunk)

@@ -62,6 +62,7 @@ struct SelfTeachOptions {
 /// One of the robot's own putts.
 struct PuttRecord {
   std::array<double, 2> target{0, 0};  ///< [m] where the hole was
+  std::array<double, 2> ball{0, 0};    ///< [m] where the ball lay
   double angle = 0.0, speed = 0.0;     ///< [rad], [m/s] what it hit
   bool hit = false, sunk = false;
   double closest_approach = 0.0;                  ///< [m]
@@ -104,16 +105,17 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
 /// relation (launch angle - theta = `bias` [rad], launch speed / club speed = `ratio`); the
 /// region's fixed speed for angle-only regions.
 std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,
-                                 std::array<double, 2> hole, double arrival, double bias,
+                                 const field::Situation& situation, double arrival, double bias,
                                  double ratio);
-/// The record of a putt (angle, speed) at `target` with result `r` (labels not yet counted).
-PuttRecord record_putt(std::array<double, 2> target, double angle, double speed,
+/// The record of a putt (angle, speed) from `situation`'s ball at its hole (the target) with
+/// result `r` (labels not yet counted).
+PuttRecord record_putt(const field::Situation& situation, double angle, double speed,
                        const control::FullPuttResult& r);
 /// The launch relation (bias, ratio) measured on `putts` (medians; 0 and 1.6 before any).
 std::array<double, 2> launch_relation(const std::vector<PuttRecord>& putts);
 
-/// Plays the putt of `label` with the hole really at its position: did it sink? (The check of a
-/// hindsight label.)
+/// Plays the putt of `label` from its ball with the hole really at its position: did it sink?
+/// (The check of a hindsight label.)
 bool replay_label(const system::System& system, system::SystemData& data, const Label& label);
 
 }  // namespace mg::selfteach

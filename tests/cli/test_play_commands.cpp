@@ -85,6 +85,9 @@ TEST(PlayCommands, BadInputsGetOneLineAndExitTwo) {
                         "--balls 'box:0,0.4:-0.2'");
   expect_one_line_error("collect --field flat --balls list:0.5,0.7 -o " + out.string(),
                         "expected a ball on the lane");
+  expect_one_line_error(
+      "self-teach --field flat --budget 5 --balls list:0.5,0.7 -o " + out.string(),
+      "expected a ball on the lane");
   expect_one_line_error("sweep --field flat --angles 0:0.1 --speeds 1:2:3 -o " + out.string(),
                         "LO:HI:N");
   expect_one_line_error("sweep --field flat --angles 0:0.1:3 --speeds 1:9:3 -o " + out.string(),

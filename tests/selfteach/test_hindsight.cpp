@@ -14,6 +14,8 @@
 namespace mg::selfteach {
 namespace {
 
+constexpr std::array<double, 2> kTee{0.0, 0.0};  // where the putts of the synthetic paths start
+
 /// A ball along +x from (0, y0) decelerating uniformly: v(t) = v0 - a t.
 std::vector<sim::BallSample> straight_path(double v0, double a, double y0 = 0.0, double dt = 0.01) {
   std::vector<sim::BallSample> t;
@@ -39,8 +41,8 @@ TEST(Hindsight, AngleAndSpeedLabelIsWhereTheBallSlowsToTheArrivalSpeed) {
   HindsightRules rules;
   rules.arrival_speed = 0.4;
   const auto far_hole = std::array<double, 2>{10.0, 5.0};
-  const auto l = hindsight_labels(path, far_hole, 0.054, 0.5, box(3.0, 4.0, -0.5, 0.5), 0.1, 0.1,
-                                  1.5, 7, rules);
+  const auto l = hindsight_labels(path, kTee, far_hole, 0.054, 0.5, box(3.0, 4.0, -0.5, 0.5), 0.1,
+                                  0.1, 1.5, 7, rules);
   ASSERT_EQ(l.size(), 1u);
   EXPECT_NEAR(l[0].hole[0], 3.84, 1e-3);
   EXPECT_NEAR(l[0].hole[1], 0.0, 1e-12);
@@ -49,16 +51,16 @@ TEST(Hindsight, AngleAndSpeedLabelIsWhereTheBallSlowsToTheArrivalSpeed) {
   EXPECT_EQ(l[0].speed, 1.5);
   EXPECT_EQ(l[0].putt, 7);
   // Outside the region (and its margin): no label.
-  EXPECT_TRUE(hindsight_labels(path, far_hole, 0.054, 0.5, box(0.0, 1.0, -0.5, 0.5), 0.1, 0.1, 1.5,
-                               7, rules)
-                  .empty());
-  // The path ends where it met the real hole: a hole before the label point leaves no label.
-  EXPECT_TRUE(hindsight_labels(path, {3.0, 0.01}, 0.054, 0.5, box(3.0, 4.0, -0.5, 0.5), 0.1, 0.1,
+  EXPECT_TRUE(hindsight_labels(path, kTee, far_hole, 0.054, 0.5, box(0.0, 1.0, -0.5, 0.5), 0.1, 0.1,
                                1.5, 7, rules)
                   .empty());
+  // The path ends where it met the real hole: a hole before the label point leaves no label.
+  EXPECT_TRUE(hindsight_labels(path, kTee, {3.0, 0.01}, 0.054, 0.5, box(3.0, 4.0, -0.5, 0.5), 0.1,
+                               0.1, 1.5, 7, rules)
+                  .empty());
   // ... but a hole at the label point itself does: the free roll is continued over it.
-  const auto own = hindsight_labels(path, {3.84, 0.0}, 0.054, 0.5, box(3.0, 4.0, -0.5, 0.5), 0.1,
-                                    0.1, 1.5, 7, rules);
+  const auto own = hindsight_labels(path, kTee, {3.84, 0.0}, 0.054, 0.5, box(3.0, 4.0, -0.5, 0.5),
+                                    0.1, 0.1, 1.5, 7, rules);
   ASSERT_EQ(own.size(), 1u);
   EXPECT_NEAR(own[0].hole[0], 3.84, 2e-3);
 }
@@ -72,7 +74,8 @@ TEST(Hindsight, AngleOnlyLabelsTheCrossingOfALineOrPointsInABox) {
   line.from = {2.0, -0.5};
   line.to = {2.0, 0.5};
   line.count = 5;
-  const auto l = hindsight_labels(path, {10.0, 5.0}, 0.054, 0.5, line, 0.05, 0.0, 1.0, 0, rules);
+  const auto l =
+      hindsight_labels(path, kTee, {10.0, 5.0}, 0.054, 0.5, line, 0.05, 0.0, 1.0, 0, rules);
   ASSERT_EQ(l.size(), 1u);
   EXPECT_NEAR(l[0].hole[0], 2.0, 1e-9);
   EXPECT_NEAR(l[0].hole[1], 0.1, 1e-12);
@@ -80,8 +83,8 @@ TEST(Hindsight, AngleOnlyLabelsTheCrossingOfALineOrPointsInABox) {
   EXPECT_NEAR(l[0].arrival_speed, std::sqrt(2.0), 2e-3);
   // A box 0.3 m long: a label every 3 cm of path inside it.
   rules.spacing = 0.03;
-  const auto b = hindsight_labels(path, {10.0, 5.0}, 0.054, 0.5, box(2.0, 2.3, 0.0, 0.2), 0.0, 0.0,
-                                  1.0, 0, rules);
+  const auto b = hindsight_labels(path, kTee, {10.0, 5.0}, 0.054, 0.5, box(2.0, 2.3, 0.0, 0.2), 0.0,
+                                  0.0, 1.0, 0, rules);
   EXPECT_GE(b.size(), 8u);
   EXPECT_LE(b.size(), 10u);
   for (std::size_t i = 1; i < b.size(); ++i)
@@ -112,8 +115,8 @@ TEST(Hindsight, LabelsOfARealPuttSinkWhenReplayedWithTheHoleThere) {
       ASSERT_FALSE(r.outcome.trajectory.empty());
       HindsightRules rules;
       rules.arrival_speed = 0.4;
-      for (const auto& l : hindsight_labels(r.outcome.trajectory, {1.2, -0.3}, 0.054, 0.35, region,
-                                            0.3, angle, speed, 0, rules)) {
+      for (const auto& l : hindsight_labels(r.outcome.trajectory, sys.field().tee, {1.2, -0.3},
+                                            0.054, 0.35, region, 0.3, angle, speed, 0, rules)) {
         ++labels;
         sunk += replay_label(sys, data, l);
       }
