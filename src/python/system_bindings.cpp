@@ -203,22 +203,25 @@ void bind_system(py::module_& m) {
           "teach",
           [](const system::System& s, std::array<double, 2> hole, const std::string& strategy,
              int max_full_putts, int max_ball_putts, double margin_angle, double margin_speed,
-             PySystemData* data) {
+             PySystemData* data, std::optional<std::array<double, 2>> ball) {
             const auto t = teacher_options(s, strategy, max_full_putts, max_ball_putts,
                                            margin_angle, margin_speed);
             Lease lease(data);
             std::optional<system::SystemData> local;
+            const field::Situation situation{ball.value_or(s.field().tee), hole};
             py::gil_scoped_release release;
-            return teacher::teach(s, data ? data->data : local.emplace(s), hole, t);
+            return teacher::teach(s, data ? data->data : local.emplace(s), situation, t);
           },
           py::arg("hole"), py::arg("strategy") = "",
           py::arg("max_full_putts") = kTeacherDefaults.max_full_putts,
           py::arg("max_ball_putts") = kTeacherDefaults.max_ball_putts,
           py::arg("margin_angle") = kTeacherDefaults.margin_angle,
           py::arg("margin_speed") = kTeacherDefaults.margin_speed, py::arg("data") = py::none(),
-          "The automated teacher finds a sinking putt for the hole (x, y) [m]. strategy: "
-          "'min-speed' | "
-          "'min-angle' (default: the field's). Margins [rad], [m/s]. Releases the GIL.")
+          py::arg("ball") = py::none(),
+          "The automated teacher finds a sinking putt for the hole (x, y) [m] from the ball at "
+          "`ball` (default: the tee; the base stands beside it facing as at the tee, so the "
+          "angle is a world angle). strategy: 'min-speed' | 'min-angle' (default: the field's). "
+          "Margins [rad], [m/s]. Releases the GIL.")
       .def(
           "sweep",
           [](const system::System& s, std::vector<double> angles, std::vector<double> speeds,

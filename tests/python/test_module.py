@@ -234,6 +234,8 @@ def test_a_ball_region_gives_ball_hole_pairs(tmp_path):
     assert tuple(flat.region("", balls="list:0.3,0.1").ball_bounds) == (0.3, 0.3, 0.1, 0.1)
     with pytest.raises(ValueError, match="--balls"):
         flat.region("", balls="list:0.3,0.9")
+    e = minigolf.System(field="flat").teach((2.0, 0.1), ball=(0.4, -0.2))
+    assert e.found and tuple(e.ball) == (0.4, -0.2) and tuple(e.hole) == (2.0, 0.1)
 
 
 def test_learners_train_predict_and_files(tmp_path):
