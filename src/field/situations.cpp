@@ -308,7 +308,9 @@ std::vector<Situation> Situations::sample_situations(const Field& field, int n,
 Situations region_from_spec(const Field& field, const std::string& spec,
                             const std::string& balls_spec) {
   Situations r = spec.empty() ? field.situations : parse_situations_spec(spec, field.situations);
+  const std::string holes_where = spec.empty() ? "" : fmt::format("--situations '{}'", spec);
   if (!balls_spec.empty()) {
+    r.validate(field, holes_where);  // a bad hole region is named as such
     try {
       r.balls = parse_situations_spec(balls_spec, Situations{});
     } catch (const InputError& e) {  // name the option the spec came from
@@ -318,10 +320,7 @@ Situations region_from_spec(const Field& field, const std::string& spec,
     }
     r.ball_inputs = !translation_invariant(field);
   }
-  const std::string where = !balls_spec.empty() ? fmt::format("--balls '{}'", balls_spec)
-                            : spec.empty()      ? ""
-                                                : fmt::format("--situations '{}'", spec);
-  r.validate(field, where);
+  r.validate(field, balls_spec.empty() ? holes_where : fmt::format("--balls '{}'", balls_spec));
   return r;
 }
 
