@@ -122,7 +122,7 @@ void add_self_teach(CLI::App& app) {
 void add_curves(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string learner = "self-teach", situations_spec, out, prior;
+    std::string learner = "self-teach", situations_spec, balls, out, prior;
     experiments::CurveOptions o;
   };
   auto a = std::make_shared<Args>();
@@ -149,6 +149,9 @@ void add_curves(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--region", a->situations_spec,
                   "Region instead of the field's (as collect --situations)");
+  cmd->add_option("--balls", a->balls,
+                  "Where the ball lies (as collect --balls; learners self-teach, adapt and "
+                  "teacher-gpr)");
   cmd->add_option("-o,--output", a->out, "CSV to write")->required();
   cmd->callback([a] {
     const experiments::CurveLearner learner = experiments::parse_curve_learner(a->learner);
@@ -171,7 +174,8 @@ void add_curves(CLI::App& app) {
     check_output_file(a->out);  // before minutes of putts, not after
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
                              load_plant_arg(a->sys.plant));
-    const field::Situations region = field::region_from_spec(sys.field(), a->situations_spec);
+    const field::Situations region =
+        field::region_from_spec(sys.field(), a->situations_spec, a->balls);
     a->o.teacher = teacher::options_for(region, "");
     Progress bar("curves", a->o.seeds);
     const auto runs = experiments::learning_curves(sys, region, learner, a->o,

@@ -143,7 +143,8 @@ CurveRun teacher_run(const system::System& sys, const field::Situations& region,
   while (spent < budget) {
     teacher::TeacherOptions t = o.teacher;
     t.max_full_putts = std::min(t.max_full_putts, budget - spent);
-    const teacher::Example e = teacher::teach(sys, data, region.sample(rng), t);
+    const teacher::Example e =
+        teacher::teach(sys, data, region.sample_situation(sys.field(), rng), t);
     spent += e.full_putts;
     if (e.full_putts == 0) break;  // cannot happen (a budget >= 1 spends a putt); guards the loop
     if (e.found) {
@@ -172,7 +173,7 @@ CurveRun teacher_run(const system::System& sys, const field::Situations& region,
         const auto r = static_cast<Eigen::Index>(i);
         for (std::size_t c2 = 0; c2 < inputs.size(); ++c2)
           d.inputs(r, static_cast<Eigen::Index>(c2)) =
-              field::situation_input(sys.field(), inputs[c2], use[i]->hole);
+              field::situation_input(sys.field(), inputs[c2], {use[i]->ball, use[i]->hole});
         d.outputs(r, 0) = use[i]->angle;
         if (outputs.size() > 1) d.outputs(r, 1) = use[i]->speed;
       }
@@ -219,10 +220,13 @@ std::vector<CurveRun> learning_curves(const system::System& system, const field:
                                       CurveLearner learner, const CurveOptions& options,
                                       const std::function<void(int, int)>& progress) {
   options.validate();
-  if (region.balls)
-    throw InputError(
-        "learning curves: the learners start from the tee; this region has a ball "
-        "region (not supported)");
+  // CRKR's policy and learning while playing act from the tee.
+  if (region.balls && (learner == CurveLearner::kCrkr || learner == CurveLearner::kAdaptPlay ||
+                       learner == CurveLearner::kAppend))
+    throw InputError(fmt::format(
+        "learning curves: --learner {} plays from the tee; this region has a ball region (not "
+        "supported)",
+        to_string(learner)));
   if (needs_prior(learner) && !options.prior)
     throw InputError(fmt::format("learning curves: --learner {} needs a prior model (--prior)",
                                  to_string(learner)));

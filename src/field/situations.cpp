@@ -283,26 +283,28 @@ std::vector<Situation> Situations::collection_situations(const Field& field) con
 
 std::vector<Situation> Situations::sample_situations(const Field& field, int n,
                                                      std::uint64_t seed) const {
-  constexpr int kRedraws = 100;
   std::vector<Situation> out;
   out.reserve(static_cast<std::size_t>(std::max(n, 0)));
   for (int i = 0; i < n; ++i) {
     Rng rng(derive_seed(seed, static_cast<std::uint64_t>(i)));
-    Situation s{field.tee, sample(rng)};
-    if (balls) {
-      int tries = 0;
-      do {
-        s.ball = balls->sample(rng);
-      } while (covers(field, s) && ++tries < kRedraws);
-      if (covers(field, s))
-        throw InputError(
-            fmt::format("situations: no ball of the ball region clears the hole at "
-                        "({}, {}) and the obstacles",
-                        s.hole[0], s.hole[1]));
-    }
-    out.push_back(s);
+    out.push_back(sample_situation(field, rng));
   }
   return out;
+}
+
+Situation Situations::sample_situation(const Field& field, Rng& rng) const {
+  constexpr int kRedraws = 100;
+  Situation s{field.tee, sample(rng)};
+  if (!balls) return s;
+  int tries = 0;
+  do {
+    s.ball = balls->sample(rng);
+  } while (covers(field, s) && ++tries < kRedraws);
+  if (covers(field, s))
+    throw InputError(fmt::format(
+        "situations: no ball of the ball region clears the hole at ({}, {}) and the obstacles",
+        s.hole[0], s.hole[1]));
+  return s;
 }
 
 Situations region_from_spec(const Field& field, const std::string& spec,

@@ -92,6 +92,9 @@ struct Situations : Region {
   /// its ball from the same stream (redrawn while the hole covers it); without a ball region the
   /// tee, so the holes are those of a region without balls.
   std::vector<Situation> sample_situations(const Field& field, int n, std::uint64_t seed) const;
+  /// One situation from `rng`: its hole (Region::sample), then its ball from the same stream
+  /// (the tee without a ball region). Throws InputError if no ball clears the hole.
+  Situation sample_situation(const Field& field, Rng& rng) const;
   /// Throws InputError (naming `where`, default: the field file's situations) if a hole of the
   /// region leaves the field's lane, a ball of its ball region leaves it, or a count or range is
   /// unusable.

@@ -105,6 +105,17 @@ TEST(LearningCurves, SameBitsForOneAndTwoThreadsAndEveryLearnerRuns) {
     ASSERT_EQ(one.size(), 2u);
     EXPECT_EQ(one[0].putts, (std::vector<int>{2, 4}));
   }
+  // From balls anywhere (issue 19): the self-teaching and teacher learners run and keep their
+  // bits over threads; CRKR, which acts from the tee, refuses.
+  const auto anywhere = field::region_from_spec(hill().field(), "", "box:0,0.4:-0.2,0.2:2,2");
+  for (const auto learner : {CurveLearner::kSelfTeach, CurveLearner::kTeacherGpr}) {
+    o.threads = 1;
+    const auto one = learning_curves(hill(), anywhere, learner, o);
+    o.threads = 2;
+    EXPECT_EQ(curves_csv(one), curves_csv(learning_curves(hill(), anywhere, learner, o)))
+        << to_string(learner);
+  }
+  EXPECT_THROW(learning_curves(hill(), anywhere, CurveLearner::kCrkr, o), InputError);
   o.checkpoints = {4, 2};
   EXPECT_THROW(learning_curves(hill(), region, CurveLearner::kCrkr, o), InputError);
   const auto s = summarize({CurveRun{CurveLearner::kCrkr, 0, {5}, {1}, 10, 0},
