@@ -210,21 +210,12 @@ TEST(Situations, OnASlopedLaneTheLearnersAlsoTakeTheBall) {
       parse(with_situations("situations:\n  grid: {x: [1.8, 2.2], y: [-0.1, 0.1], counts: [2, 2]}\n"
                             "  ball: {list: {points: [[0.0, 0.0], [0.3, 0.2]]}}\n"));
   EXPECT_FALSE(f.situations.ball_inputs);
-  const std::string hill = R"(
-format_version: 1
-name: hill
-lane: {bounds: [-0.3, 2.7, -0.6, 0.6]}
-tee: [0.0, 0.0]
-hole: {position: [2.0, 0.0]}
-rolling_resistance: 0.131
-surface:
-  - {type: plane}
-  - {type: hill, crest: [1.0, 0.0], direction: [1.0, 0.0], height: 0.05, half_width: 0.4}
-situations:
-  grid: {x: [1.8, 2.2], y: [-0.1, 0.1], counts: [2, 2]}
-  ball: {list: {points: [[0.0, 0.0], [0.3, 0.2]]}}
-)";
-  f = parse(hill);
+  // A ridge across the lane: the surface list goes on with a hill term.
+  const std::string hill =
+      "  - {type: hill, crest: [1.0, 0.0], direction: [1.0, 0.0], height: 0.05, half_width: 0.4}\n"
+      "situations:\n  grid: {x: [1.8, 2.2], y: [-0.1, 0.1], counts: [2, 2]}\n"
+      "  ball: {list: {points: [[0.0, 0.0], [0.3, 0.2]]}}\n";
+  f = parse(with_situations(hill));
   EXPECT_FALSE(translation_invariant(f));
   EXPECT_TRUE(f.situations.ball_inputs);
   EXPECT_EQ(f.situations.learner_inputs(),
