@@ -71,19 +71,18 @@ std::vector<Prediction> predict_hits(const learning::Model& model, const field::
 std::vector<Prediction> predict_hits(const learning::Model& model, const field::Field& field,
                                      const std::vector<field::Situation>& situations) {
   check_playable_model(model, "model");
-  const auto& holes = situations;
-  Eigen::MatrixXd q(static_cast<Eigen::Index>(holes.size()), model.num_inputs());
-  for (std::size_t i = 0; i < holes.size(); ++i)
+  Eigen::MatrixXd q(static_cast<Eigen::Index>(situations.size()), model.num_inputs());
+  for (std::size_t i = 0; i < situations.size(); ++i)
     for (int c = 0; c < model.num_inputs(); ++c) {
       q(static_cast<Eigen::Index>(i), c) = field::situation_input(
           field, model.input_names[static_cast<std::size_t>(c)], situations[i]);
     }
-  std::vector<Prediction> out(holes.size());
-  if (holes.empty()) return out;
+  std::vector<Prediction> out(situations.size());
+  if (situations.empty()) return out;
   const learning::Predictions p = learning::predict(model, q);
   const int ia = output_index(model, "angle"), is = output_index(model, "speed");
   const double* fixed = model.fixed_value("speed");
-  for (std::size_t i = 0; i < holes.size(); ++i) {
+  for (std::size_t i = 0; i < situations.size(); ++i) {
     const auto r = static_cast<Eigen::Index>(i);
     out[i].angle = p.mean(r, ia);
     out[i].angle_std = p.std(r, ia);
@@ -163,15 +162,14 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
               ? field::Situation{ball, {hole[0] + hx - bx, hole[1] + hy - by}}
               : field::Situation{{ball[0] + bx, ball[1] + by}, {hole[0] + hx, hole[1] + hy}};
     }
-  const auto& holes = situations;
   const auto predictions = policy(perceived);
-  if (predictions.size() != holes.size())
-    throw Error(
-        fmt::format("policy: {} predictions for {} situations", predictions.size(), holes.size()));
+  if (predictions.size() != situations.size())
+    throw Error(fmt::format("policy: {} predictions for {} situations", predictions.size(),
+                            situations.size()));
   Evaluation e;
-  e.rows.resize(holes.size());
+  e.rows.resize(situations.size());
   const auto& c = system.config();
-  const int n = static_cast<int>(holes.size());
+  const int n = static_cast<int>(situations.size());
   int done = 0;
   system::distributed_for(
       system, e.rows, options.threads,

@@ -259,17 +259,12 @@ std::array<double, 4> Region::bounds() const {
   return b;
 }
 
-namespace {
-
-/// The hole covers the ball, or the ball lies in an obstacle: no putt to play.
-bool covers(const Field& field, const Situation& s) {
-  if (std::hypot(s.hole[0] - s.ball[0], s.hole[1] - s.ball[1]) < field.hole.diameter) return true;
+bool playable(const Field& field, const Situation& s) {
+  if (std::hypot(s.hole[0] - s.ball[0], s.hole[1] - s.ball[1]) < field.hole.diameter) return false;
   for (const auto& o : field.obstacles)
-    if (o.distance(s.ball) < field.ball.radius) return true;
-  return false;
+    if (o.distance(s.ball) < field.ball.radius) return false;
+  return true;
 }
-
-}  // namespace
 
 std::vector<Situation> Situations::collection_situations(const Field& field) const {
   const std::vector<std::array<double, 2>> ball_points =
@@ -277,7 +272,7 @@ std::vector<Situation> Situations::collection_situations(const Field& field) con
   std::vector<Situation> out;
   for (const auto& b : ball_points)
     for (const auto& h : collection_points())
-      if (const Situation s{b, h}; !covers(field, s)) out.push_back(s);
+      if (const Situation s{b, h}; playable(field, s)) out.push_back(s);
   return out;
 }
 
@@ -299,8 +294,8 @@ Situation Situations::sample_situation(const Field& field, Rng& rng) const {
   int tries = 0;
   do {
     s.ball = balls->sample(rng);
-  } while (covers(field, s) && ++tries < kRedraws);
-  if (covers(field, s))
+  } while (!playable(field, s) && ++tries < kRedraws);
+  if (!playable(field, s))
     throw InputError(fmt::format(
         "situations: no ball of the ball region clears the hole at ({}, {}) and the obstacles",
         s.hole[0], s.hole[1]));

@@ -101,6 +101,10 @@ struct Situations : Region {
   void validate(const Field& field, const std::string& where = "") const;
 };
 
+/// False if the hole covers the ball (closer than a hole diameter) or the ball lies in an obstacle:
+/// no putt to play there.
+bool playable(const Field& field, const Situation& situation);
+
 /// True if putting on `field` depends on hole - ball only (away from the borders): its surface
 /// has one gradient everywhere on the lane (a plane), and it has no obstacles.
 bool translation_invariant(const Field& field);

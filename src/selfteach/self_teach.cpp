@@ -65,11 +65,7 @@ std::vector<field::Situation> candidate_targets(const field::Field& field,
   if (region.balls) {
     const auto bb = region.balls->bounds();
     const field::Situation middle{{0.5 * (bb[0] + bb[1]), 0.5 * (bb[2] + bb[3])}, centre};
-    bool playable =
-        std::hypot(centre[0] - middle.ball[0], centre[1] - middle.ball[1]) > field.hole.diameter;
-    for (const auto& o : field.obstacles)
-      playable = playable && o.distance(middle.ball) >= field.ball.radius;
-    if (playable) c.push_back(middle);
+    if (field::playable(field, middle)) c.push_back(middle);
     for (const auto& s : region.collection_situations(field)) c.push_back(s);
     for (const auto& s : region.sample_situations(field, n, derive_seed(seed, 13))) c.push_back(s);
     return c;
