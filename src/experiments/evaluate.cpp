@@ -168,7 +168,6 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
                             situations.size()));
   Evaluation e;
   e.rows.resize(situations.size());
-  const auto& c = system.config();
   const int n = static_cast<int>(situations.size());
   int done = 0;
   system::distributed_for(
@@ -179,14 +178,13 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
         r.ball = situations[static_cast<std::size_t>(i)].ball;
         r.predicted = predictions[static_cast<std::size_t>(i)];
         const double a = r.predicted.angle, v = r.predicted.speed;
-        r.in_envelope = std::isfinite(a) && std::isfinite(v) && a >= c.angle_min &&
-                        a <= c.angle_max && v >= c.speed_min && v <= c.speed_max;
+        r.in_envelope = system::hit_reachable(system, a, v);
         if (r.in_envelope) {
           control::FullPuttOptions po;
           po.torque_noise = options.torque_noise;  // (a plant may add its own: the seed is set)
           po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-          if (r.ball != field.tee) po.stance = system::stance_for(system, r.ball, 0.0);
-          const control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
+          const control::FullPuttResult p =
+              system::arm_hit(system, data, {r.ball, r.hole}, a, v, po);
           r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
           r.outcome = p.outcome;
         }
@@ -241,7 +239,6 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
   Evaluation& e = out.evaluation;
   e.rows.resize(holes.size());
   system::SystemData data(system);
-  const auto& c = system.config();
   const int n = static_cast<int>(holes.size());
   std::vector<selfteach::PuttRecord> putts;
   std::vector<selfteach::Label> labels;
@@ -254,15 +251,14 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
     r.predicted.angle = plan[0];
     r.predicted.speed = plan[1];
     const double a = r.predicted.angle, v = r.predicted.speed;
-    r.in_envelope = std::isfinite(a) && std::isfinite(v) && a >= c.angle_min && a <= c.angle_max &&
-                    v >= c.speed_min && v <= c.speed_max;
+    r.in_envelope = system::hit_reachable(system, a, v);
     int added = 0;
     if (r.in_envelope) {
       control::FullPuttOptions po;
       po.record_interval = 0.005;
       po.torque_noise = options.torque_noise;
       po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-      control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
+      control::FullPuttResult p = system::arm_hit(system, data, {field.tee, r.hole}, a, v, po);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       putts.push_back(selfteach::record_putt({field.tee, r.hole}, a, v, p));
       if (p.hit) {
@@ -317,7 +313,6 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
   Evaluation& e = out.evaluation;
   e.rows.resize(holes.size());
   system::SystemData data(system);
-  const auto& c = system.config();
   const int n = static_cast<int>(holes.size());
   Rng rng(derive_seed(options.seed, 17));
   std::vector<Eigen::Index> tuned_at;
@@ -328,15 +323,14 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
     r.hole = holes[k];
     r.predicted = predict_hits(out.learned, field, {r.hole})[0];
     const double a = r.predicted.angle, v = r.predicted.speed;
-    r.in_envelope = std::isfinite(a) && std::isfinite(v) && a >= c.angle_min && a <= c.angle_max &&
-                    v >= c.speed_min && v <= c.speed_max;
+    r.in_envelope = system::hit_reachable(system, a, v);
     int added = 0;
     if (r.in_envelope) {
       control::FullPuttOptions po;
       po.record_interval = 0.005;
       po.torque_noise = options.torque_noise;
       po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-      control::FullPuttResult p = system::arm_putt(system, data, r.hole, a, v, po);
+      control::FullPuttResult p = system::arm_hit(system, data, {field.tee, r.hole}, a, v, po);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       if (p.hit) {
         const auto labels =

@@ -77,7 +77,7 @@ struct SituationResult {
   std::array<double, 2> hole{0, 0};
   std::array<double, 2> ball{0, 0};  ///< where the ball lay (the tee unless a ball region)
   Prediction predicted;
-  bool in_envelope = true;  ///< false: the module refused the request (it counts as a miss)
+  bool in_envelope = true;  ///< false: no stance reaches the hit (system::hit_reachable; a miss)
   bool sunk = false;
   sim::PuttOutcome outcome;
   bool oracle_found = false;  ///< the teacher found a sinking putt here

@@ -259,11 +259,16 @@ std::array<double, 4> Region::bounds() const {
   return b;
 }
 
+bool ball_rests(const Field& field, std::array<double, 2> p) {
+  const auto g = field.surface.gradient(p[0], p[1]);
+  return std::hypot(g[0], g[1]) <= kRestSlopeFraction * field.rolling_resistance;
+}
+
 bool playable(const Field& field, const Situation& s) {
   if (std::hypot(s.hole[0] - s.ball[0], s.hole[1] - s.ball[1]) < field.hole.diameter) return false;
   for (const auto& o : field.obstacles)
     if (o.distance(s.ball) < field.ball.radius) return false;
-  return true;
+  return s.ball == field.tee || ball_rests(field, s.ball);
 }
 
 std::vector<Situation> Situations::collection_situations(const Field& field) const {
@@ -297,7 +302,8 @@ Situation Situations::sample_situation(const Field& field, Rng& rng) const {
   } while (!playable(field, s) && ++tries < kRedraws);
   if (!playable(field, s))
     throw InputError(fmt::format(
-        "situations: no ball of the ball region clears the hole at ({}, {}) and the obstacles",
+        "situations: no ball of the ball region clears the hole at ({}, {}) and the obstacles "
+        "on a slope a ball rests on",
         s.hole[0], s.hole[1]));
   return s;
 }

@@ -101,8 +101,17 @@ struct Situations : Region {
   void validate(const Field& field, const std::string& where = "") const;
 };
 
-/// False if the hole covers the ball (closer than a hole diameter) or the ball lies in an obstacle:
-/// no putt to play there.
+/// The steepest slope a ball may be placed on, as a fraction of the lane's rolling resistance rho.
+/// A real ball rests where |grad z| < rho; the simulated resting ball creeps on any slope, faster
+/// near rho (on arctan it rolled off at 0.144 = 1.1 rho while the arm took its rest pose), so a
+/// margin is kept.
+inline constexpr double kRestSlopeFraction = 0.8;
+
+/// True if a ball can lie at rest at `p`: |grad z| <= kRestSlopeFraction * rolling_resistance.
+bool ball_rests(const Field& field, std::array<double, 2> p);
+
+/// False if the hole covers the ball (closer than a hole diameter), the ball lies in an obstacle,
+/// or a ball off the tee could not rest where it lies (ball_rests): no putt to play there.
 bool playable(const Field& field, const Situation& situation);
 
 /// True if putting on `field` depends on hole - ball only (away from the borders): its surface

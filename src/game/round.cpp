@@ -237,13 +237,17 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         control::FullPuttOptions o;
         o.seed = derive_seed(options.seed, 3000 + h * 64 + static_cast<std::uint64_t>(hr.strokes));
         o.record_interval = kPathInterval;
-        // The model's hits face +x, as it was trained; the planner's face the launch.
-        o.stance = system::stance_for(*w.truth, ball, model_hit ? 0.0 : plan.angle);
+        // The model's hits stand as its data were collected (system::hit_pose: facing +x
+        // unless the fixed arm cannot reach them); the planner's face the launch.
+        const system::HitPose pose =
+            model_hit ? system::hit_pose(*w.truth, ball, model_hit->angle, model_hit->club_speed)
+                      : system::HitPose{system::stance_for(*w.truth, ball, plan.angle), 0.0, true};
+        o.stance = pose.stance;
         // The robot walks to the ball it saw: the module sees it off by the vision error.
         o.perceived_ball_offset = {seen[0] - ball[0], seen[1] - ball[1]};
         const double club =
             model_hit ? model_hit->club_speed : skill.club_for(plan.speed, club_min, club_max);
-        const double hitting = model_hit ? model_hit->angle : -skill.angle_offset(club);
+        const double hitting = model_hit ? pose.angle : -skill.angle_offset(club);
         const auto r = system::arm_putt(*w.truth, *w.data, hole, hitting, club, o);
         if (r.hit_refused || !r.hit) {
           // Braked, the ball untouched: the stroke counts (a whiff), the ball stays.

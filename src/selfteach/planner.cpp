@@ -226,8 +226,9 @@ std::array<double, 3> Planner::plan(const field::Situation& situation) const {
       score = std::max(score, std::sqrt(pv.latent_variance) / kWindowSpeed);
     }
   }
+  // Any direction: the base turns for hits beyond the fixed arm's envelope (system::hit_pose).
   const auto& c = sys_.config();
-  a = std::clamp(a, c.angle_min + 1e-6, c.angle_max - 1e-6);
+  a = std::remainder(a, 2.0 * robot::kPi);
   if (region_.learn_speed || prior_model_) v = std::clamp(v, c.speed_min, c.speed_max);
   return {a, v, score};
 }

@@ -167,9 +167,8 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
 }
 
 bool replay_label(const system::System& system, system::SystemData& data, const Label& label) {
-  control::FullPuttOptions o;
-  if (label.ball != system.field().tee) o.stance = system::stance_for(system, label.ball, 0.0);
-  return system::arm_putt(system, data, label.hole, label.angle, label.speed, o).outcome.sunk;
+  return system::arm_hit(system, data, {label.ball, label.hole}, label.angle, label.speed)
+      .outcome.sunk;
 }
 
 SelfTeachResult self_teach(const system::System& system, const field::Situations& region,
@@ -254,10 +253,7 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
           const auto k = static_cast<std::size_t>(i);
           control::FullPuttOptions po;
           po.record_interval = options.record_interval;
-          if (targets[k].ball != system.field().tee)
-            po.stance = system::stance_for(system, targets[k].ball, 0.0);
-          results[k] =
-              system::arm_putt(system, data, targets[k].hole, plans[k][0], plans[k][1], po);
+          results[k] = system::arm_hit(system, data, targets[k], plans[k][0], plans[k][1], po);
         });
     for (int b = 0; b < round; ++b) {
       const auto k = static_cast<std::size_t>(b);

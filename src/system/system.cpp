@@ -103,6 +103,30 @@ robot::Stance putt_stance(const System& system, std::array<double, 2> ball,
   return stance_for(system, ball, aim ? *aim : std::atan2(hole[1] - ball[1], hole[0] - ball[0]));
 }
 
+bool hit_reachable(const System& system, double angle, double speed) {
+  const auto& c = system.config();
+  return std::isfinite(angle) && std::isfinite(speed) && speed >= c.speed_min &&
+         speed <= std::min(c.speed_max, system.module().club_speed_cap());
+}
+
+HitPose hit_pose(const System& system, std::array<double, 2> ball, double angle, double speed) {
+  const auto& c = system.config();
+  const field::Field& f = system.field();
+  const bool fixed_reach = angle >= c.angle_min && angle <= c.angle_max &&
+                           speed <= system.module().club_speed_cap(angle);
+  HitPose pose;
+  if (fixed_reach || !hit_reachable(system, angle, speed)) {
+    // Out of every stance's reach too: aim 0, and the module refuses the request as before.
+    if (ball != f.tee) pose.stance = stance_for(system, ball, 0.0);
+    pose.angle = angle;
+    return pose;
+  }
+  pose.stance = stance_for(system, ball, angle);
+  pose.angle = 0.0;
+  pose.turned = true;
+  return pose;
+}
+
 SystemData::SystemData(const System& system)
     : arm(system.arm_world().make_data()),
       ball(system.ball_world().make_data()),
@@ -176,6 +200,19 @@ control::FullPuttResult arm_putt(const System& system, SystemData& data, std::ar
   }
   return control::full_system_putt(*data.stance_world, system.module(), data.stance_arm.get(), hole,
                                    angle, speed, options, data.scratch.get());
+}
+
+control::FullPuttResult arm_hit(const System& system, SystemData& data,
+                                const field::Situation& situation, double angle, double speed,
+                                control::FullPuttOptions options) {
+  const HitPose pose = hit_pose(system, situation.ball, angle, speed);
+  options.stance = pose.stance;
+  control::FullPuttResult r = arm_putt(system, data, situation.hole, pose.angle, speed, options);
+  if (pose.turned) {
+    r.club.angle = std::remainder(r.club.angle + pose.stance.yaw, 2.0 * robot::kPi);
+    r.launch.angle = std::remainder(r.launch.angle + pose.stance.yaw, 2.0 * robot::kPi);
+  }
+  return r;
 }
 
 sim::PuttOutcome ball_putt(const System& system, SystemData& data, std::array<double, 2> hole,

@@ -89,6 +89,23 @@ robot::Stance stance_for(const System& system, std::array<double, 2> ball, doubl
 robot::Stance putt_stance(const System& system, std::array<double, 2> ball,
                           std::array<double, 2> hole, std::optional<double> aim);
 
+/// The stance rule for a hit given in world terms (docs/play.md, "The stance"): the base stands
+/// beside the ball facing +x (aim 0, stance_for) whenever the arm reaches the hit from there — the
+/// angle in the envelope and the club speed under its cap at that angle, every hit the thesis's
+/// fixed arm makes — and otherwise turns to face the hitting direction (hitting angle 0 in its
+/// frame, the full speed cap). So a learned hit is a world direction and a club speed, and data
+/// collected by the fixed arm keep their meaning.
+struct HitPose {
+  robot::Stance stance;  ///< the identity for the field's tee with aim 0
+  double angle = 0.0;    ///< [rad] the hitting angle in the stance's frame
+  bool turned = false;   ///< the base turned (the hit is out of the fixed arm's reach)
+};
+HitPose hit_pose(const System& system, std::array<double, 2> ball, double angle, double speed);
+
+/// True when the arm can make the hit from some stance: the angle is finite and the club speed
+/// within speed_min..the module's cap.
+bool hit_reachable(const System& system, double angle, double speed);
+
 /// Per-thread mutable state for putts on one System.
 struct SystemData {
   explicit SystemData(const System& system);
@@ -116,6 +133,14 @@ std::array<double, 2> real_hole(const System& system, std::array<double, 2> hole
 /// off the lane.
 control::FullPuttResult arm_putt(const System& system, SystemData& data, std::array<double, 2> hole,
                                  double angle, double speed, control::FullPuttOptions options = {});
+
+/// The arm hits the ball lying at situation.ball towards `angle` [rad, world] at club speed
+/// `speed` [m/s], the base placed by hit_pose; the hole seen at situation.hole. The result's club
+/// and launch angles are world angles. For a ball on the tee and a hit the fixed arm reaches: the
+/// same bits as arm_putt.
+control::FullPuttResult arm_hit(const System& system, SystemData& data,
+                                const field::Situation& situation, double angle, double speed,
+                                control::FullPuttOptions options = {});
 
 /// The ball alone, launched from `start` (default: the tee) at `angle` [rad, world], `speed`
 /// [m/s] (no spin), the hole seen at `hole` (really at real_hole(system, hole)).

@@ -2,47 +2,124 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace mg::teacher {
 namespace {
+
 constexpr double kGravity = 9.81;
+using Vec = std::array<double, 2>;
+
+Vec operator-(Vec a, Vec b) { return {a[0] - b[0], a[1] - b[1]}; }
+Vec operator+(Vec a, Vec b) { return {a[0] + b[0], a[1] + b[1]}; }
+Vec operator*(double k, Vec a) { return {k * a[0], k * a[1]}; }
+double dot(Vec a, Vec b) { return a[0] * b[0] + a[1] * b[1]; }
+double norm(Vec a) { return std::hypot(a[0], a[1]); }
+
+/// A straight piece of the line the ball's centre bounces on: a border's or an obstacle face's
+/// a ball radius out, from p0 to p1, its normal n pointing to the side the ball comes from.
+struct Mirror {
+  Vec p0, p1, n;
+  double restitution;
+  Vec reflect(Vec p) const { return p - 2.0 * dot(p - p0, n) * n; }
+  /// Where the segment a -> b crosses the mirror coming from its free side (nothing: it does not).
+  std::optional<Vec> hit(Vec a, Vec b) const {
+    const double da = dot(a - p0, n), db = dot(b - p0, n);
+    if (!(da > 0.0 && db < 0.0)) return std::nullopt;
+    const Vec p = a + (da / (da - db)) * (b - a);
+    const Vec along = p1 - p0;
+    const double u = dot(p - p0, along) / dot(along, along);
+    if (u < 0.0 || u > 1.0) return std::nullopt;
+    return p;
+  }
+};
+
+std::vector<Mirror> mirrors(const field::Field& f) {
+  const auto& b = f.bounds;
+  const double r = f.ball.radius, e = f.borders.restitution;
+  std::vector<Mirror> out = {
+      {{b[0] + r, b[2] + r}, {b[0] + r, b[3] - r}, {1.0, 0.0}, e},
+      {{b[1] - r, b[2] + r}, {b[1] - r, b[3] - r}, {-1.0, 0.0}, e},
+      {{b[0] + r, b[2] + r}, {b[1] - r, b[2] + r}, {0.0, 1.0}, e},
+      {{b[0] + r, b[3] - r}, {b[1] - r, b[3] - r}, {0.0, -1.0}, e},
+  };
+  for (const auto& o : f.obstacles) {
+    const field::Footprint fp = o.footprint();
+    const Vec ex{std::cos(fp.yaw), std::sin(fp.yaw)}, ey{-ex[1], ex[0]};
+    // The four flat faces, a ball radius out (the rounded corners are left out).
+    for (int sign : {-1, 1}) {
+      const Vec nx = static_cast<double>(sign) * ex, ny = static_cast<double>(sign) * ey;
+      const Vec cx = fp.center + (fp.half[0] + r) * nx, cy = fp.center + (fp.half[1] + r) * ny;
+      out.push_back({cx - fp.half[1] * ey, cx + fp.half[1] * ey, nx, o.restitution});
+      out.push_back({cy - fp.half[0] * ex, cy + fp.half[0] * ex, ny, o.restitution});
+    }
+  }
+  return out;
+}
+
+/// The prior launch speed that rolls the legs (in order, `path` from the ball to the hole) and
+/// arrives at `arrival`: backwards from the hole, each bounce keeps the tangential speed and
+/// `restitution` of the normal one.
+double launch_speed(const std::vector<Vec>& path, const std::vector<const Mirror*>& hits,
+                    double a_roll, double arrival) {
+  double v2 = arrival * arrival;
+  for (std::size_t k = path.size() - 1; k >= 1; --k) {
+    v2 += 2.0 * a_roll * norm(path[k] - path[k - 1]);
+    if (k >= 2) {  // path[k - 1] is a bounce: undo it
+      const Mirror& m = *hits[k - 2];
+      const Vec d = path[k - 1] - path[k - 2];
+      const double s = std::abs(dot(d, m.n)) / std::max(norm(d), 1e-9);  // sine of incidence
+      const double keep = (1.0 - s * s) + m.restitution * m.restitution * s * s;
+      v2 /= std::max(keep, 0.05);
+    }
+  }
+  return 7.0 / 5.0 * std::sqrt(v2);  // a launched ball keeps 5/7 of its speed once it rolls
+}
+
 }  // namespace
 
 std::vector<BankShot> bank_shots(const field::Field& f, std::array<double, 2> ball,
                                  std::array<double, 2> hole, double arrival) {
-  const auto& b = f.bounds;
-  const double r = f.ball.radius, e = f.borders.restitution;
   const double a_roll = 5.0 / 7.0 * f.rolling_resistance * kGravity;
-  std::vector<BankShot> out;
-  for (int side = 0; side < 4; ++side) {
-    const bool vertical = side < 2;  // x = const
-    const double line = side == 0   ? b[0] + r
-                        : side == 1 ? b[1] - r
-                        : side == 2 ? b[2] + r
-                                    : b[3] - r;
-    std::array<double, 2> image = hole;
-    image[vertical ? 0 : 1] = 2.0 * line - hole[vertical ? 0 : 1];
-    const int k = vertical ? 0 : 1;
-    const double denom = image[k] - ball[k];
-    if (std::abs(denom) < 1e-9) continue;
-    const double t = (line - ball[k]) / denom;
-    if (!(t > 0.0 && t < 1.0)) continue;
-    const std::array<double, 2> bounce{ball[0] + t * (image[0] - ball[0]),
-                                       ball[1] + t * (image[1] - ball[1])};
-    if (field::line_blocked(f, ball, bounce, r) || field::line_blocked(f, bounce, hole, r))
-      continue;
-    const double l1 = std::hypot(bounce[0] - ball[0], bounce[1] - ball[1]);
-    const double l2 = std::hypot(hole[0] - bounce[0], hole[1] - bounce[1]);
-    const double normal = std::abs(denom) / (l1 + l2);  // sine of the incidence on the line
-    const double keep = (1.0 - normal * normal) + e * e * normal * normal;
-    const double after = arrival * arrival + 2.0 * a_roll * l2;
-    const double v2 = after / std::max(keep, 0.05) + 2.0 * a_roll * l1;
-    out.push_back(
-        {std::atan2(image[1] - ball[1], image[0] - ball[0]), 7.0 / 5.0 * std::sqrt(v2), l1 + l2});
+  // The legs may pass a ball radius from anything but the faces they bounce on (0.99: the bounce
+  // point itself is exactly a radius away).
+  const double clearance = 0.99 * f.ball.radius;
+  const auto clear = [&](const std::vector<Vec>& path) {
+    for (std::size_t k = 1; k < path.size(); ++k)
+      if (field::line_blocked(f, path[k - 1], path[k], clearance)) return false;
+    return true;
+  };
+  const auto add = [&](std::vector<BankShot>& out, const std::vector<Vec>& path,
+                       const std::vector<const Mirror*>& hits) {
+    if (!clear(path)) return;
+    double length = 0.0;
+    for (std::size_t k = 1; k < path.size(); ++k) length += norm(path[k] - path[k - 1]);
+    out.push_back({std::atan2(path[1][1] - ball[1], path[1][0] - ball[0]),
+                   launch_speed(path, hits, a_roll, arrival), length,
+                   static_cast<int>(hits.size())});
+  };
+  const std::vector<Mirror> ms = mirrors(f);
+  std::vector<BankShot> one, two;
+  for (const Mirror& m : ms) {
+    if (dot(hole - m.p0, m.n) <= 0.0) continue;
+    if (const auto b = m.hit(ball, m.reflect(hole))) add(one, {ball, *b, hole}, {&m});
   }
-  std::sort(out.begin(), out.end(),
-            [](const BankShot& x, const BankShot& y) { return x.path_length < y.path_length; });
-  return out;
+  for (const Mirror& m1 : ms)
+    for (const Mirror& m2 : ms) {
+      if (&m1 == &m2 || dot(hole - m2.p0, m2.n) <= 0.0) continue;
+      const Vec h2 = m2.reflect(hole);
+      const auto b1 = m1.hit(ball, m1.reflect(h2));
+      if (!b1) continue;
+      const auto b2 = m2.hit(*b1, h2);
+      if (b2) add(two, {ball, *b1, *b2, hole}, {&m1, &m2});
+    }
+  const auto shorter = [](const BankShot& x, const BankShot& y) {
+    return x.path_length < y.path_length;
+  };
+  std::sort(one.begin(), one.end(), shorter);
+  std::sort(two.begin(), two.end(), shorter);
+  one.insert(one.end(), two.begin(), two.end());
+  return one;
 }
 
 }  // namespace mg::teacher

@@ -1,6 +1,6 @@
 #pragma once
 /// Bank shots for the teacher (teacher.hpp, stage 1): where an obstacle blocks the straight line,
-/// aim at the hole's mirror image across a border.
+/// fold the path at one or two borders or obstacle faces.
 #include <array>
 #include <vector>
 
@@ -8,16 +8,19 @@
 
 namespace mg::teacher {
 
-/// A bank shot off one border: the launch that aims at the hole's mirror image across the line
-/// the ball's centre bounces on (the border's face a ball radius into the lane).
+/// A bank shot: the launch whose path, folded at each bounce (the mirror law on the line the
+/// ball's centre bounces on: a border's or an obstacle face's, a ball radius out), reaches the
+/// hole.
 struct BankShot {
   double angle = 0.0;         ///< [rad] launch direction
-  double launch_speed = 0.0;  ///< [m/s] prior: rolls both legs, loses the normal speed's share
+  double launch_speed = 0.0;  ///< [m/s] prior: rolls every leg, loses the normal speed's share
   double path_length = 0.0;   ///< [m]
+  int bounces = 1;
 };
 
-/// The bank shots from `ball` off the four borders whose two legs are clear of obstacles,
-/// shortest first; `arrival` [m/s] is the speed the ball should reach the hole with.
+/// The bank shots from `ball` to `hole` off the borders and the flat faces of the obstacles: one
+/// bounce (shortest path first), then two bounces (shortest first); every leg clear of the
+/// obstacles by a ball radius. `arrival` [m/s] is the speed the ball should reach the hole with.
 std::vector<BankShot> bank_shots(const field::Field& f, std::array<double, 2> ball,
                                  std::array<double, 2> hole, double arrival);
 

@@ -26,6 +26,15 @@ namespace {
 constexpr double kGravity = 9.81;
 constexpr double kLaunchBias = -0.006;  ///< [rad] measured launch angle - theta (docs/control.md)
 constexpr double kLaunchRatio = 1.6;    ///< measured launch speed / club speed (1.54-1.67)
+/// [rad] how far a search may turn from where it starts (the fixed arm's envelope is 0.9 wide;
+/// the base turns for hits beyond it, so the search is bounded round its start instead).
+constexpr double kAngleReach = 0.6;
+
+/// d(lateral miss)/d(launch angle) [m/rad] of a bank at the start: each bounce mirrors the path,
+/// so the miss turns the other way once per bounce (the direct line's is -distance).
+double bank_lateral_gain(const BankShot& b) {
+  return b.bounces % 2 == 1 ? b.path_length : -b.path_length;
+}
 
 /// One putt, seen the way the teacher uses it.
 struct Probe {
@@ -48,7 +57,6 @@ class Search {
         opt_(options) {
     const auto& f = system.field();
     const auto hole = hole_;
-    if (!on_tee_) stance_ = system::stance_for(system, ball_, 0.0);
     dx_ = hole[0] - ball_[0];
     dy_ = hole[1] - ball_[1];
     distance_ = std::hypot(dx_, dy_);
@@ -63,7 +71,8 @@ class Search {
       banks_ = bank_shots(f, ball_, hole, vt_);
     if (!banks_.empty()) {  // the shortest bank until a search tries the others
       aim_ = banks_.front().angle;
-      distance_ = lateral_gain_ = banks_.front().path_length;
+      distance_ = banks_.front().path_length;
+      lateral_gain_ = bank_lateral_gain(banks_.front());
       prior_launch_speed_ = banks_.front().launch_speed;
     }
   }
@@ -85,19 +94,21 @@ class Search {
                                       on_tee_ ? std::nullopt : std::optional(ball_)));
   }
 
+  /// A club the arm can hit from some stance (the base turns beyond the fixed arm's envelope:
+  /// system::hit_pose).
   std::pair<double, double> clamp_club(double angle, double speed) const {
     const auto& c = sys_.config();
-    angle = std::clamp(angle, c.angle_min, c.angle_max);
-    speed =
-        std::clamp(speed, c.speed_min, std::min(c.speed_max, sys_.module().club_speed_cap(angle)));
+    speed = std::clamp(speed, c.speed_min, max_club_speed());
     return {angle, speed};
+  }
+
+  double max_club_speed() const {
+    return std::min(sys_.config().speed_max, sys_.module().club_speed_cap());
   }
 
   Probe full(double angle, double speed) {
     ++ex_.full_putts;
-    control::FullPuttOptions o;
-    o.stance = stance_;  // aim 0: the stance's angles are world angles
-    const control::FullPuttResult r = system::arm_putt(sys_, data_, hole_, angle, speed, o);
+    const control::FullPuttResult r = system::arm_hit(sys_, data_, {ball_, hole_}, angle, speed);
     if (!r.hit || r.hit_refused) return {};
     Probe p = residual(r.outcome);
     p.launch_angle = r.launch.angle;
@@ -177,15 +188,14 @@ class Search {
       if (auto x = solve(x0, j, 14, probe, lo, hi, false)) return x;
       return grid_proposal();
     }
-    const auto& c = sys_.config();
     for (const BankShot& b : banks_) {
       if (ex_.ball_putts + 14 > opt_.max_ball_putts) break;
       aim_ = b.angle;
       distance_ = b.path_length;
-      lateral_gain_ = b.path_length;  // one bounce mirrors the path: the miss turns the other way
+      lateral_gain_ = bank_lateral_gain(b);
       Eigen::Matrix2d j;
       j << lateral_gain_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * b.launch_speed;
-      const Eigen::Vector2d lo(c.angle_min + kLaunchBias, 0.2), hi(c.angle_max + kLaunchBias, 6.0);
+      const Eigen::Vector2d lo(b.angle - kAngleReach, 0.2), hi(b.angle + kAngleReach, 6.0);
       if (auto x = solve(Eigen::Vector2d(b.angle, b.launch_speed), j, 14, probe, lo, hi, false))
         return x;
     }
@@ -246,8 +256,8 @@ class Search {
       const auto [a, s] = clamp_club(x[0], x[1]);
       return full(a, s);
     };
-    const Eigen::Vector2d lo(c.angle_min, c.speed_min),
-        hi(c.angle_max, sys_.module().club_speed_cap());
+    const Eigen::Vector2d lo(launch[0] - kAngleReach, c.speed_min),
+        hi(launch[0] + kAngleReach, max_club_speed());
     return solve(Eigen::Vector2d(theta, v), j,
                  std::max(2, opt_.max_full_putts - ex_.full_putts - 6), probe, lo, hi, false);
   }
@@ -261,24 +271,22 @@ class Search {
       const auto [a, s] = clamp_club(x[0], x[1]);
       return full(a, s);
     };
-    const Eigen::Vector2d lo(c.angle_min, c.speed_min),
-        hi(c.angle_max, sys_.module().club_speed_cap());
+    const Eigen::Vector2d lo(opt_.hint[0] - kAngleReach, c.speed_min),
+        hi(opt_.hint[0] + kAngleReach, max_club_speed());
     return solve(Eigen::Vector2d(opt_.hint[0], opt_.hint[1]), j,
                  std::max(2, opt_.max_full_putts - 6), probe, lo, hi, false);
   }
 
   /// Angle only: the secant on the lateral miss at the fixed club speed, on the full system.
   std::optional<Eigen::Vector2d> angle_solve() {
-    const auto& c = sys_.config();
     Eigen::Matrix2d j;
     j << lateral_gain_, 0.0, 0.0, 1.0;
     const double v = opt_.fixed_speed;
-    const auto probe = [&](const Eigen::Vector2d& x) {
-      return full(std::clamp(x[0], c.angle_min, c.angle_max), v);
-    };
+    const auto probe = [&](const Eigen::Vector2d& x) { return full(x[0], v); };
     const double start = opt_.use_hint ? opt_.hint[0] : aim_ - kLaunchBias;
     return solve(Eigen::Vector2d(start, v), j, std::max(2, opt_.max_full_putts - 6), probe,
-                 Eigen::Vector2d(c.angle_min, v), Eigen::Vector2d(c.angle_max, v), true);
+                 Eigen::Vector2d(start - kAngleReach, v), Eigen::Vector2d(start + kAngleReach, v),
+                 true);
   }
 
   /// Verifies (and if needed re-centres) the neighbourhood of a sinking point.
@@ -345,8 +353,7 @@ class Search {
   const system::System& sys_;
   system::SystemData& data_;
   std::array<double, 2> hole_, ball_;
-  bool on_tee_ = true;  ///< the identity stance; else the base stands beside the ball (aim 0)
-  robot::Stance stance_;
+  bool on_tee_ = true;  ///< ball-only putts start at the tee without a start point
   TeacherOptions opt_;
   double dx_ = 0, dy_ = 0, distance_ = 1, aim_ = 0, a_roll_ = 0, vt_ = 0.5, radius_ = 0.054;
   double prior_launch_speed_ = 1.0;

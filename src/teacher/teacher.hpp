@@ -16,10 +16,11 @@
 /// 1. Proposal on the ball-only path (launch angle, launch speed): Broyden's method from a
 ///    physics-free prior (aim at the hole; the launch speed that rolls the distance plus the
 ///    climb, Penner's law); a coarse grid around the aim if that does not converge. When an
-///    obstacle blocks the straight line, bank shots instead: aim at the hole's mirror image
-///    across a border (its face a ball radius in), legs clear of obstacles, the shortest path
-///    first; the first that converges is the window the teacher takes (one bounce mirrors the
-///    path, so the miss's slope in the angle starts with the other sign).
+///    obstacle blocks the straight line, bank shots instead (bank_shots.hpp): the path folded at
+///    one border or obstacle face (mirror images, legs clear of obstacles), shortest first, then
+///    at two; the first that converges is the window the teacher takes (each bounce mirrors the
+///    path, so the miss's slope in the angle flips sign per bounce). Hits beyond the fixed arm's
+///    envelope are made with the base turned (system::hit_pose): angles are world angles.
 /// 2. The proposal is mapped to the club through the launch relation measured by the putts
 ///    themselves (launch angle - theta, launch speed / club speed) and solved again on the full
 ///    system with the same residual. Every recorded example is a full-system putt that sank.
@@ -83,7 +84,7 @@ struct Example {
 Example teach(const system::System& system, system::SystemData& data, std::array<double, 2> hole,
               const TeacherOptions& options);
 /// The same for the ball at situation.ball: the base stands beside it as beside the tee (the
-/// stance rule with aim 0, system::stance_for), so angles are world angles as from the tee.
+/// stance rule for hits, system::hit_pose), so angles are world angles as from the tee.
 Example teach(const system::System& system, system::SystemData& data,
               const field::Situation& situation, const TeacherOptions& options);
 
