@@ -245,7 +245,10 @@ void Situations::validate(const Field& field, const std::string& where_arg) cons
   for (const auto& p : balls->collection_points()) ball_points.push_back(p);
   for (const auto& p : ball_points) check_ball_position(field, p, where + ": ball");
   if (collection_situations(field).empty())
-    bad("every hole of the region covers every ball of its ball region");
+    bad(fmt::format(
+        "no (ball, hole) pair to play: every hole covers every ball, or the balls lie on slopes a "
+        "ball does not rest on (steeper than {} x rolling_resistance)",
+        kRestSlopeFraction));
 }
 
 std::array<double, 4> Region::bounds() const {

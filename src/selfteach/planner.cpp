@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "selfteach/self_teach.hpp"
+#include "teacher/bank_shots.hpp"
 
 namespace mg::selfteach {
 namespace {
@@ -173,12 +174,16 @@ void Planner::update(const std::vector<PuttRecord>& putts, std::vector<Label> la
 
 Label Planner::pseudo_label(const PuttRecord& p, int index) const {
   const auto& f = sys_.field();
-  const double distance =
-      std::max(0.1, std::hypot(p.target[0] - p.ball[0], p.target[1] - p.ball[1]));
+  // Newton's step on the lateral miss: the direct line's slope is -distance; a bank's flips
+  // with each bounce (teacher::BankShot::lateral_gain).
+  double gain = -std::max(0.1, std::hypot(p.target[0] - p.ball[0], p.target[1] - p.ball[1]));
+  if (field::line_blocked(f, p.ball, p.target, f.ball.radius))
+    if (const auto banks = teacher::bank_shots(f, p.ball, p.target, arrival_); !banks.empty())
+      gain = banks.front().lateral_gain();
   Label l;
   l.hole = p.target;
   l.ball = p.ball;
-  l.angle = p.angle + std::clamp(p.approach_lateral / distance, -0.05, 0.05);
+  l.angle = p.angle - std::clamp(p.approach_lateral / gain, -0.05, 0.05);
   l.speed = p.speed;
   l.putt = index;
   if (region_.learn_speed) {

@@ -12,6 +12,7 @@
 #include "core/rng.hpp"
 #include "stats/gpr.hpp"
 #include "system/parallel.hpp"
+#include "teacher/bank_shots.hpp"
 #include "teacher/teacher.hpp"
 
 namespace mg::selfteach {
@@ -95,7 +96,12 @@ double distance(const field::Situation& a, const field::Situation& b) {
 std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,
                                  const field::Situation& situation, double arrival, double bias,
                                  double ratio) {
-  const auto g = teacher::prior_launch(field, situation.ball, situation.hole, arrival);
+  auto g = teacher::prior_launch(field, situation.ball, situation.hole, arrival);
+  // An obstacle on the line: the shortest bank shot (the teacher's first choice) instead.
+  if (field::line_blocked(field, situation.ball, situation.hole, field.ball.radius))
+    if (const auto banks = teacher::bank_shots(field, situation.ball, situation.hole, arrival);
+        !banks.empty())
+      g = {banks.front().angle, banks.front().launch_speed};
   return {g.angle - bias, region.learn_speed ? g.speed / ratio : region.speed};
 }
 

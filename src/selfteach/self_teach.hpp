@@ -101,7 +101,8 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
                                   const std::vector<Label>& labels, int putts, std::uint64_t seed);
 
 /// The prior's club (angle [rad], speed [m/s]) for `hole`: aim at it, the launch speed that
-/// rolls there arriving at `arrival` [m/s] (teacher::prior_launch), mapped through the launch
+/// rolls there arriving at `arrival` [m/s] (teacher::prior_launch; with an obstacle on the line,
+/// the shortest bank shot, teacher::bank_shots), mapped through the launch
 /// relation (launch angle - theta = `bias` [rad], launch speed / club speed = `ratio`); the
 /// region's fixed speed for angle-only regions.
 std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,

@@ -16,6 +16,9 @@ struct BankShot {
   double launch_speed = 0.0;  ///< [m/s] prior: rolls every leg, loses the normal speed's share
   double path_length = 0.0;   ///< [m]
   int bounces = 1;
+  /// d(lateral miss at the hole)/d(launch angle) [m/rad] at the start: each bounce mirrors the
+  /// path, so the miss turns the other way once per bounce (the direct line's is -distance).
+  double lateral_gain() const { return bounces % 2 == 1 ? path_length : -path_length; }
 };
 
 /// The bank shots from `ball` to `hole` off the borders and the flat faces of the obstacles: one

@@ -29,12 +29,8 @@ constexpr double kLaunchRatio = 1.6;    ///< measured launch speed / club speed 
 /// [rad] how far a search may turn from where it starts (the fixed arm's envelope is 0.9 wide;
 /// the base turns for hits beyond it, so the search is bounded round its start instead).
 constexpr double kAngleReach = 0.6;
-
-/// d(lateral miss)/d(launch angle) [m/rad] of a bank at the start: each bounce mirrors the path,
-/// so the miss turns the other way once per bounce (the direct line's is -distance).
-double bank_lateral_gain(const BankShot& b) {
-  return b.bounces % 2 == 1 ? b.path_length : -b.path_length;
-}
+/// [rad] a bank's search stays this close to its folded path's aim (further, it is another path).
+constexpr double kBankReach = 0.1;
 
 /// One putt, seen the way the teacher uses it.
 struct Probe {
@@ -72,7 +68,7 @@ class Search {
     if (!banks_.empty()) {  // the shortest bank until a search tries the others
       aim_ = banks_.front().angle;
       distance_ = banks_.front().path_length;
-      lateral_gain_ = bank_lateral_gain(banks_.front());
+      lateral_gain_ = banks_.front().lateral_gain();
       prior_launch_speed_ = banks_.front().launch_speed;
     }
   }
@@ -192,10 +188,10 @@ class Search {
       if (ex_.ball_putts + 14 > opt_.max_ball_putts) break;
       aim_ = b.angle;
       distance_ = b.path_length;
-      lateral_gain_ = bank_lateral_gain(b);
+      lateral_gain_ = b.lateral_gain();
       Eigen::Matrix2d j;
       j << lateral_gain_, 0.0, 0.0, 2.0 * 25.0 / 49.0 * b.launch_speed;
-      const Eigen::Vector2d lo(b.angle - kAngleReach, 0.2), hi(b.angle + kAngleReach, 6.0);
+      const Eigen::Vector2d lo(b.angle - kBankReach, 0.2), hi(b.angle + kBankReach, 6.0);
       if (auto x = solve(Eigen::Vector2d(b.angle, b.launch_speed), j, 14, probe, lo, hi, false))
         return x;
     }

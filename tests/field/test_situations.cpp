@@ -223,6 +223,46 @@ TEST(Situations, OnASlopedLaneTheLearnersAlsoTakeTheBall) {
   EXPECT_EQ(f.situations.collection_situations(f).size(), 8u);
 }
 
+// A ball lies only where it can rest: on a plane steeper than the rest slope every ball off the
+// tee is refused, and sampling keeps drawing until a ball rests.
+TEST(Situations, BallsLieOnlyWhereABallRests) {
+  const auto tilted = [](double slope, bool balls) {
+    return with_situations(
+        "  - {type: plane, slope_x: 0.0, slope_y: " + std::to_string(slope) +
+        "}\nsituations:\n  line: {from: [2.0, -0.1], to: [2.0, 0.1], count: 3}\n" +
+        (balls ? "  ball: {box: {x: [0.0, 0.4], y: [-0.2, 0.2], counts: [2, 2]}}\n" : ""));
+  };
+  const double limit = kRestSlopeFraction * 0.131;
+  const Field gentle = parse(tilted(0.9 * limit, true)), steep = parse(tilted(1.1 * limit, false));
+  EXPECT_TRUE(ball_rests(gentle, {0.3, 0.1}));
+  EXPECT_FALSE(ball_rests(steep, {0.3, 0.1}));
+  EXPECT_TRUE(playable(steep, Situation{steep.tee, {2.0, 0.0}}));  // the tee is the field's own
+  EXPECT_FALSE(playable(steep, Situation{{0.3, 0.1}, {2.0, 0.0}}));
+  EXPECT_EQ(gentle.situations.collection_situations(gentle).size(), 12u);
+  try {
+    parse(tilted(1.1 * limit, true));
+    ADD_FAILURE() << "a ball region on a slope no ball rests on was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rest"), std::string::npos) << e.what();
+  }
+  Situations on_steep = steep.situations;
+  on_steep.balls = gentle.situations.balls;
+  EXPECT_TRUE(on_steep.collection_situations(steep).empty());
+  EXPECT_THROW(on_steep.sample_situations(steep, 1, 3), InputError);
+  // arctan: the saddle's cross slope (|grad z| = 0.146 at (0.3, 0)) does not hold a ball; its
+  // flanks do. Every sampled ball rests.
+  const Field arctan = load_field("arctan");
+  EXPECT_FALSE(ball_rests(arctan, {0.3, 0.0}));
+  EXPECT_TRUE(ball_rests(arctan, {0.3, 0.2}));
+  Situations region = arctan.situations;
+  region.balls =
+      region_from_spec(arctan, "box:1.8,2.3:0.05,0.35:2,2", "box:0,0.4:-0.2,0.2:2,2").balls;
+  ASSERT_TRUE(region.balls.has_value());
+  for (const auto& s : region.sample_situations(arctan, 60, 3)) {
+    EXPECT_TRUE(ball_rests(arctan, s.ball)) << s.ball[0] << ", " << s.ball[1];
+  }
+}
+
 TEST(Situations, BallRegionErrorsNameTheBall) {
   expect_error(
       "situations: {line: {from: [2, 0], to: [2, 0.3], count: 3}, ball: {line: {from: [0, 0], to: "
@@ -236,7 +276,7 @@ TEST(Situations, BallRegionErrorsNameTheBall) {
                "exactly one of line, grid, box, list");
   expect_error(
       "situations: {list: {points: [[1.0, 0.0]]}, ball: {list: {points: [[1.0, 0.01]]}}}\n",
-      "covers every ball");
+      "every hole covers every ball");
 }
 
 }  // namespace

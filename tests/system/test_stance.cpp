@@ -51,6 +51,62 @@ TEST(Stance, AnArmPuttFromAMovedBallLaunchesAsFromTheTeeAlongTheAim) {
   }
 }
 
+// The stance rule for hits in world terms: within the fixed arm's reach the base faces +x (the
+// thesis's data keep their meaning); beyond it the base turns to the hitting direction.
+TEST(HitPose, TheBaseTurnsOnlyForHitsTheFixedArmCannotMake) {
+  const System s(load_config("", "flat"));
+  const auto& c = s.config();
+  const std::array<double, 2> tee = s.field().tee, ball{0.8, 0.2};
+  HitPose p = hit_pose(s, tee, 0.3, 1.5);
+  EXPECT_FALSE(p.turned);
+  EXPECT_TRUE(p.stance.identity());
+  EXPECT_EQ(p.angle, 0.3);
+  p = hit_pose(s, ball, 0.3, 1.5);
+  EXPECT_FALSE(p.turned);
+  EXPECT_EQ(p.stance, stance_for(s, ball, 0.0));
+  // Beyond the envelope's angles, and at a negative angle faster than its capped club speed.
+  for (const auto& [angle, speed] :
+       {std::pair{c.angle_max + 0.3, 1.0}, std::pair{-1.2, 1.0}, std::pair{2.8, 2.0},
+        std::pair{-0.2, s.module().club_speed_cap(-0.2) + 0.2}}) {
+    p = hit_pose(s, ball, angle, speed);
+    EXPECT_TRUE(p.turned) << angle;
+    EXPECT_EQ(p.angle, 0.0) << angle;
+    EXPECT_EQ(p.stance, stance_for(s, ball, angle)) << angle;
+  }
+  // Out of every stance's reach: no turn, the module refuses.
+  EXPECT_FALSE(hit_reachable(s, 0.1, s.module().club_speed_cap() + 0.1));
+  EXPECT_FALSE(hit_reachable(s, std::nan(""), 1.0));
+  EXPECT_FALSE(hit_pose(s, ball, std::nan(""), 1.0).turned);
+  EXPECT_FALSE(hit_pose(s, ball, 1.2, s.module().club_speed_cap() + 0.1).turned);
+  EXPECT_TRUE(hit_reachable(s, -2.0, 1.0));
+}
+
+TEST(HitPose, AnArmHitLeavesAlongItsWorldAngleFromAnyStance) {
+  const System s(load_config("", "flat"));
+  SystemData d(s);
+  const std::array<double, 2> ball{0.8, 0.2}, hole = s.field().hole.position;
+  const auto fixed = arm_hit(s, d, {ball, hole}, 0.2, 0.6);
+  ASSERT_TRUE(fixed.hit && !fixed.hit_refused);
+  // The same bits as the fixed arm's putt within its reach.
+  control::FullPuttOptions o;
+  o.stance = stance_for(s, ball, 0.0);
+  const auto same = arm_putt(s, d, hole, 0.2, 0.6, o);
+  EXPECT_EQ(same.launch.angle, fixed.launch.angle);
+  EXPECT_EQ(same.outcome.rest_position, fixed.outcome.rest_position);
+  // Backwards and sideways: the base turns; the launch is a world angle near the request.
+  for (const double angle : {1.3, -1.0, 2.9}) {
+    const auto r = arm_hit(s, d, {ball, hole}, angle, 0.6);
+    ASSERT_TRUE(r.hit && !r.hit_refused) << angle;
+    EXPECT_NEAR(std::remainder(r.launch.angle - angle, 2 * M_PI), fixed.launch.angle - 0.2, 2e-3)
+        << angle;
+    const double dx = r.outcome.rest_position[0] - ball[0],
+                 dy = r.outcome.rest_position[1] - ball[1];
+    EXPECT_NEAR(std::remainder(std::atan2(dy, dx) - r.launch.angle, 2 * M_PI), 0.0, 0.02) << angle;
+  }
+  // NaN: refused, the ball untouched.
+  EXPECT_TRUE(arm_hit(s, d, {ball, hole}, std::nan(""), 0.8).hit_refused);
+}
+
 TEST(Stance, ABallOffTheLaneOrInsideAnObstacleIsAnInputError) {
   const System s(load_config("", "flat"));
   SystemData d(s);

@@ -43,9 +43,8 @@ TEST(Teacher, TeachesFromABallOffTheTee) {
   EXPECT_EQ(e.ball, s.ball);
   EXPECT_EQ(e.hole, s.hole);
   EXPECT_NEAR(e.angle, std::atan2(0.3, 1.6), 0.02);
-  control::FullPuttOptions o;
-  o.stance = system::stance_for(flat(), s.ball, 0.0);
-  const auto out = system::arm_putt(flat(), data, e.hole, e.angle, e.speed, o).outcome;
+  EXPECT_FALSE(system::hit_pose(flat(), s.ball, e.angle, e.speed).turned);
+  const auto out = system::arm_hit(flat(), data, s, e.angle, e.speed).outcome;
   EXPECT_TRUE(out.sunk);
   // The same putt from the tee misses: the example is the ball's, not the tee's.
   EXPECT_FALSE(system::arm_putt(flat(), data, e.hole, e.angle, e.speed).outcome.sunk);
@@ -58,9 +57,23 @@ TEST(Teacher, TeachesFromABallOffTheTee) {
   }
 }
 
+// From a ball at y = +0.2 the hole at y = -0.15 on the hill lies at a negative hitting angle
+// that needs more club speed than the fixed arm has there (1.3 m/s): the base turns.
+TEST(Teacher, AHitBeyondTheFixedArmsReachIsMadeWithTheBaseTurned) {
+  const system::System sys(system::load_config("", "regular-hill"));
+  system::SystemData data(sys);
+  const field::Situation s{{0.0, 0.2}, {1.75, -0.15}};
+  const Example e = teach(sys, data, s, TeacherOptions{});
+  ASSERT_TRUE(e.found);
+  EXPECT_LT(e.angle, -0.15);
+  EXPECT_GT(e.speed, sys.module().club_speed_cap(e.angle));
+  EXPECT_TRUE(system::hit_pose(sys, s.ball, e.angle, e.speed).turned);
+  EXPECT_GT(e.margin_angle, 0.0);
+  EXPECT_TRUE(system::arm_hit(sys, data, s, e.angle, e.speed).outcome.sunk);
+}
+
 TEST(Teacher, ABlockedLineIsPlayedOffABorder) {
-  // bank-shot: a block between the tee and the hole; the bank off the +y border is the one the
-  // fixed arm's hitting angles reach (up to 0.6 rad).
+  // bank-shot: a block between the tee and the hole; the shortest bank is off the +y border.
   const system::System sys(system::load_config("", "bank-shot"));
   system::SystemData data(sys);
   const Example e = teach(sys, data, {1.9, 0.2}, TeacherOptions{});
@@ -68,7 +81,8 @@ TEST(Teacher, ABlockedLineIsPlayedOffABorder) {
   EXPECT_GT(e.angle, 0.4);  // far off the direct line (0.1 rad): towards the border
   control::FullPuttOptions o;
   o.record_interval = 0.01;
-  const auto out = system::arm_putt(sys, data, e.hole, e.angle, e.speed, o).outcome;
+  const auto out =
+      system::arm_hit(sys, data, {sys.field().tee, e.hole}, e.angle, e.speed, o).outcome;
   EXPECT_TRUE(out.sunk);
   double max_y = -1.0;
   for (const auto& p : out.trajectory) max_y = std::max(max_y, p.y);
