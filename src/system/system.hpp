@@ -89,12 +89,12 @@ robot::Stance stance_for(const System& system, std::array<double, 2> ball, doubl
 robot::Stance putt_stance(const System& system, std::array<double, 2> ball,
                           std::array<double, 2> hole, std::optional<double> aim);
 
-/// The stance rule for a hit given in world terms (docs/play.md, "The stance"): the base stands
-/// beside the ball facing +x (aim 0, stance_for) whenever the arm reaches the hit from there — the
-/// angle in the envelope and the club speed under its cap at that angle, every hit the thesis's
-/// fixed arm makes — and otherwise turns to face the hitting direction (hitting angle 0 in its
-/// frame, the full speed cap). So a learned hit is a world direction and a club speed, and data
-/// collected by the fixed arm keep their meaning.
+/// The stance rule for a hit given in world terms (docs/play.md, "Where the ball lies"): the base
+/// stands beside the ball facing +x (aim 0, stance_for) whenever the arm reaches the hit from
+/// there (the angle in the envelope and the club speed under its cap at that angle: every hit the
+/// thesis's fixed arm makes), and otherwise turns to face the hitting direction (hitting angle 0
+/// in its frame, the full speed cap). So a learned hit is a world direction and a club speed, and
+/// data collected by the fixed arm keep their meaning.
 struct HitPose {
   robot::Stance stance;  ///< the identity for the field's tee with aim 0
   double angle = 0.0;    ///< [rad] the hitting angle in the stance's frame
