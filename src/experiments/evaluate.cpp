@@ -230,24 +230,26 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
   const double margin = selfteach::label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
   const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
-  const auto holes = region.sample(options.situations, options.seed);
+  const auto situations = region.sample_situations(field, options.situations, options.seed);
   selfteach::Planner planner(system, region, rules.arrival_speed, options.seed,
                              std::make_shared<const learning::Model>(model));
 
   LearningEvaluation out;
   out.learned = model;
   Evaluation& e = out.evaluation;
-  e.rows.resize(holes.size());
+  e.rows.resize(situations.size());
   system::SystemData data(system);
-  const int n = static_cast<int>(holes.size());
+  const int n = static_cast<int>(situations.size());
   std::vector<selfteach::PuttRecord> putts;
   std::vector<selfteach::Label> labels;
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
+    const field::Situation& s = situations[k];
     SituationResult& r = e.rows[k];
-    r.hole = holes[k];
-    const auto plan = planner.plan(r.hole);
-    r.predicted = predict_hits(model, field, {r.hole})[0];  // the prior's std
+    r.hole = s.hole;
+    r.ball = s.ball;
+    const auto plan = planner.plan(s);
+    r.predicted = predict_hits(model, field, std::vector<field::Situation>{s})[0];  // prior's std
     r.predicted.angle = plan[0];
     r.predicted.speed = plan[1];
     const double a = r.predicted.angle, v = r.predicted.speed;
@@ -258,11 +260,11 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
       po.record_interval = 0.005;
       po.torque_noise = options.torque_noise;
       po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-      control::FullPuttResult p = system::arm_hit(system, data, {field.tee, r.hole}, a, v, po);
+      control::FullPuttResult p = system::arm_hit(system, data, s, a, v, po);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
-      putts.push_back(selfteach::record_putt({field.tee, r.hole}, a, v, p));
+      putts.push_back(selfteach::record_putt(s, a, v, p));
       if (p.hit) {
-        const auto ls = selfteach::hindsight_labels(p.outcome.trajectory, field.tee, r.hole,
+        const auto ls = selfteach::hindsight_labels(p.outcome.trajectory, s.ball, s.hole,
                                                     hole_radius, rolling_decel, region, margin, a,
                                                     v, static_cast<int>(putts.size()) - 1, rules);
         added = static_cast<int>(ls.size());
@@ -306,22 +308,24 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
   const double margin = selfteach::label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
   const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
-  const auto holes = region.sample(options.situations, options.seed);
+  const auto situations = region.sample_situations(field, options.situations, options.seed);
 
   LearningEvaluation out;
   out.learned = model;
   Evaluation& e = out.evaluation;
-  e.rows.resize(holes.size());
+  e.rows.resize(situations.size());
   system::SystemData data(system);
-  const int n = static_cast<int>(holes.size());
+  const int n = static_cast<int>(situations.size());
   Rng rng(derive_seed(options.seed, 17));
   std::vector<Eigen::Index> tuned_at;
   for (const auto& gp : model.gps) tuned_at.push_back(gp.size());
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
+    const field::Situation& s = situations[k];
     SituationResult& r = e.rows[k];
-    r.hole = holes[k];
-    r.predicted = predict_hits(out.learned, field, {r.hole})[0];
+    r.hole = s.hole;
+    r.ball = s.ball;
+    r.predicted = predict_hits(out.learned, field, std::vector<field::Situation>{s})[0];
     const double a = r.predicted.angle, v = r.predicted.speed;
     r.in_envelope = system::hit_reachable(system, a, v);
     int added = 0;
@@ -330,17 +334,18 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
       po.record_interval = 0.005;
       po.torque_noise = options.torque_noise;
       po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-      control::FullPuttResult p = system::arm_hit(system, data, {field.tee, r.hole}, a, v, po);
+      control::FullPuttResult p = system::arm_hit(system, data, s, a, v, po);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       if (p.hit) {
         const auto labels =
-            selfteach::hindsight_labels(p.outcome.trajectory, field.tee, r.hole, hole_radius,
+            selfteach::hindsight_labels(p.outcome.trajectory, s.ball, s.hole, hole_radius,
                                         rolling_decel, region, margin, a, v, i, rules);
         for (const auto& l : labels) {
           Eigen::VectorXd x(out.learned.num_inputs());
           for (int col = 0; col < out.learned.num_inputs(); ++col)
-            x(col) = field::situation_input(
-                field, out.learned.input_names[static_cast<std::size_t>(col)], l.hole);
+            x(col) = field::situation_input(field,
+                                            out.learned.input_names[static_cast<std::size_t>(col)],
+                                            field::Situation{l.ball, l.hole});
           for (int o = 0; o < out.learned.num_outputs(); ++o) {
             stats::GpModel& gp = out.learned.gps[static_cast<std::size_t>(o)];
             Eigen::MatrixXd xs(gp.inputs.rows() + 1, gp.inputs.cols());
@@ -388,8 +393,6 @@ LearningEvaluation evaluate_learning(const system::System& system, const learnin
   options.validate();
   if (options.perception_noise > 0.0 || options.oracle)
     throw InputError("--learn: plays without perception noise and without the oracle");
-  if (region.balls)
-    throw InputError("--learn: plays from the tee; this region has a ball region (not supported)");
   return options.learn == LearnMode::kAppend
              ? evaluate_appending(system, model, region, options, progress)
              : evaluate_residual(system, model, region, options, progress);

@@ -220,9 +220,8 @@ std::vector<CurveRun> learning_curves(const system::System& system, const field:
                                       CurveLearner learner, const CurveOptions& options,
                                       const std::function<void(int, int)>& progress) {
   options.validate();
-  // CRKR's policy and learning while playing act from the tee.
-  if (region.balls && (learner == CurveLearner::kCrkr || learner == CurveLearner::kAdaptPlay ||
-                       learner == CurveLearner::kAppend))
+  // CRKR's policy acts from the tee.
+  if (region.balls && learner == CurveLearner::kCrkr)
     throw InputError(fmt::format(
         "learning curves: --learner {} plays from the tee; this region has a ball region (not "
         "supported)",
