@@ -54,6 +54,7 @@ void add_putt_command(CLI::App& app) {
     std::string hole;
     std::string ball;
     std::optional<double> aim;
+    bool world = false;
     double angle = 0.0;
     double speed = 0.0;
     double max_duration = system::PuttSpec{}.max_duration;
@@ -73,6 +74,9 @@ void add_putt_command(CLI::App& app) {
   cmd->add_option("--aim", o->aim,
                   "With the arm: the direction [rad, world] the base's hitting frame faces "
                   "(default: from --ball to the hole; without --ball 0)");
+  cmd->add_flag("--world", o->world,
+                "With the arm: --angle is a world direction; the base faces +x when the fixed arm "
+                "can make the hit, else turns to it (the stance rule of learned hits)");
   cmd->add_option("--angle", o->angle,
                   "Launch angle [rad], counter-clockwise from +x (with the arm: the hitting "
                   "angle in the base's frame)")
@@ -96,10 +100,13 @@ void add_putt_command(CLI::App& app) {
     spec.speed = o->speed;
     spec.ball_only = o->ball_only;
     spec.aim = o->aim;
+    spec.world = o->world;
     spec.max_duration = o->max_duration;
     spec.record_interval = o->trajectory.empty() ? 0.0 : system::kTrajectoryInterval;
     if (o->ball_only && o->aim)
       throw InputError("--aim: only with the arm (a ball-only putt's --angle is its aim)");
+    if (o->world && (o->aim || o->ball_only))
+      throw InputError("--world: picks its own stance (not with --aim or --ball-only)");
     if (!o->hole.empty()) spec.hole = parse_vector<2>("--hole", o->hole);
     if (!o->ball.empty()) spec.ball = parse_vector<2>("--ball", o->ball);
     const system::System sys(system::load_config(o->config, o->field, o->hitting_model),

@@ -172,13 +172,14 @@ void bind_system(py::module_& m) {
           [](const system::System& s, double angle, double speed,
              std::optional<std::array<double, 2>> hole, bool ball_only, double max_duration,
              double record_interval, PySystemData* data, std::optional<std::array<double, 2>> ball,
-             std::optional<double> aim) {
+             std::optional<double> aim, bool world) {
             system::PuttSpec spec;
             spec.angle = angle;
             spec.speed = speed;
             spec.hole = hole;
             spec.ball = ball;
             spec.aim = aim;
+            spec.world = world;
             spec.ball_only = ball_only;
             spec.max_duration = max_duration;
             spec.record_interval = record_interval;
@@ -187,7 +188,7 @@ void bind_system(py::module_& m) {
           py::arg("angle"), py::arg("speed"), py::arg("hole") = py::none(),
           py::arg("ball_only") = false, py::arg("max_duration") = kPuttDefaults.max_duration,
           py::arg("record_interval") = system::kTrajectoryInterval, py::arg("data") = py::none(),
-          py::arg("ball") = py::none(), py::arg("aim") = py::none(),
+          py::arg("ball") = py::none(), py::arg("aim") = py::none(), py::arg("world") = false,
           "One putt. Arm (default): hitting angle `angle` [rad] and club speed `speed` [m/s] "
           "within the safe "
           "envelope. ball_only: the ball launched from the tee at `angle` [rad], `speed` [m/s]. "
@@ -198,7 +199,10 @@ void bind_system(py::module_& m) {
           "of this "
           "System (default: a fresh one). ball: where the ball lies (x, y) [m] (default: the tee); "
           "with the arm the base stands beside it facing `aim` [rad, world] (default: the hole) "
-          "and `angle` is in its frame. Releases the GIL.")
+          "and `angle` is in its frame. world: `angle` is a world direction and the base "
+          "stands by the stance rule of learned hits (facing +x when the fixed arm can make the "
+          "hit, else turned to it; not with aim); club and launch angles are then world angles. "
+          "Releases the GIL.")
       .def(
           "teach",
           [](const system::System& s, std::array<double, 2> hole, const std::string& strategy,

@@ -1,5 +1,9 @@
 #include "system/putt.hpp"
 
+#include <algorithm>
+
+#include <fmt/format.h>
+
 #include "core/error.hpp"
 #include "field/field.hpp"
 
@@ -27,13 +31,27 @@ PuttReport putt(const System& sys, SystemData& data, const PuttSpec& spec) {
     r.outcome = sim::simulate_putt(sys.ball_world(), data.ball.get(), real, request);
     return r;
   }
-  sys.check_request(spec.angle, spec.speed, "putt");
   control::FullPuttOptions options;
   options.max_duration = spec.max_duration;
   options.record_interval = spec.record_interval;
-  if (spec.ball || spec.aim) options.stance = putt_stance(sys, r.ball, r.hole, spec.aim);
-  r.aim = options.stance.yaw;
-  const control::FullPuttResult f = arm_putt(sys, data, r.hole, spec.angle, spec.speed, options);
+  control::FullPuttResult f;
+  if (spec.world) {
+    if (spec.aim || spec.ball_only)
+      throw InputError("world: a world direction picks its own stance (not with aim or ball only)");
+    if (!hit_reachable(sys, spec.angle, spec.speed))
+      throw InputError(fmt::format(
+          "putt: no stance reaches angle {} rad at club speed {} m/s (expected a finite angle "
+          "and {}..{} m/s)",
+          spec.angle, spec.speed, sys.config().speed_min,
+          std::min(sys.config().speed_max, sys.module().club_speed_cap())));
+    r.aim = hit_pose(sys, r.ball, spec.angle, spec.speed).stance.yaw;
+    f = arm_hit(sys, data, {r.ball, r.hole}, spec.angle, spec.speed, options);
+  } else {
+    sys.check_request(spec.angle, spec.speed, "putt");
+    if (spec.ball || spec.aim) options.stance = putt_stance(sys, r.ball, r.hole, spec.aim);
+    r.aim = options.stance.yaw;
+    f = arm_putt(sys, data, r.hole, spec.angle, spec.speed, options);
+  }
   if (f.hit_refused) throw InputError("putt: the module refused the hit request");
   if (!f.hit) throw NumericalError("putt: the club did not reach the ball");
   r.outcome = f.outcome;

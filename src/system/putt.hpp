@@ -27,6 +27,10 @@ struct PuttSpec {
   /// [rad, world] With the arm: the direction the base's hitting frame faces (default: from the
   /// ball to the hole with `ball`, else 0). Not for ball-only putts.
   std::optional<double> aim;
+  /// With the arm: `angle` is a world direction and the base stands by the stance rule for hits
+  /// (system::hit_pose: facing +x when the fixed arm can make the hit, else turned to it), as
+  /// learned models' hits are played. Not with `aim` or ball_only.
+  bool world = false;
   bool ball_only = false;        ///< launch the ball directly (no arm)
   double max_duration = 30.0;    ///< [s] give up after this simulated time
   double record_interval = 0.0;  ///< [s] ball trajectory spacing (0: none); with the arm from

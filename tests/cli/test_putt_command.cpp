@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -47,6 +48,31 @@ TEST(PuttCommand, TheArmPuttsFromWhereverTheBallLies) {
   EXPECT_NE(off.err.find("--ball"), std::string::npos) << off.err;
   const auto aim = run_minigolf("putt --field flat --ball-only --aim 1 --angle 0 --speed 0.6");
   EXPECT_EQ(aim.exit_code, 2);
+}
+
+// --world: the angle is a world direction; the base faces +x within the fixed arm's reach and
+// turns beyond it (the stance rule of learned hits).
+TEST(PuttCommand, AWorldDirectionPicksItsStance) {
+  const auto within = run_minigolf(
+      "putt --field flat --ball 1.0,0.3 --world --angle 0.2 "
+      "--speed 0.6 --json");
+  ASSERT_EQ(within.exit_code, 0) << within.err;
+  EXPECT_EQ(nlohmann::json::parse(within.out)["aim"].get<double>(), 0.0);
+  const auto back = run_minigolf(
+      "putt --field flat --ball 1.0,0.3 --world --angle 2.8 "
+      "--speed 0.6 --json");
+  ASSERT_EQ(back.exit_code, 0) << back.err;
+  const auto j = nlohmann::json::parse(back.out);
+  EXPECT_NEAR(j["aim"].get<double>(), 2.8, 1e-12);
+  EXPECT_NEAR(j["launch"]["angle"].get<double>(), 2.8, 0.02) << back.out;  // a world angle
+  EXPECT_LT(j["rest_position"][0].get<double>(), 1.0) << back.out;
+  for (const char* bad : {"putt --field flat --world --aim 1 --angle 0 --speed 0.6",
+                          "putt --field flat --world --ball-only --angle 0 --speed 0.6",
+                          "putt --field flat --world --angle 0 --speed 9"}) {
+    const auto r = run_minigolf(bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
 }
 
 TEST(PuttCommand, TrajectoryCsvHasTheDocumentedHeader) {

@@ -87,6 +87,17 @@ def test_putt_from_wherever_the_ball_lies_equals_the_cli(flat):
         flat.putt(0.0, 0.6, ball_only=True, aim=1.0)
 
 
+def test_a_world_direction_picks_its_stance_as_the_cli(flat):
+    ours = as_json(flat.putt(2.8, 0.6, ball=(1.0, 0.3), world=True, record_interval=0.0).to_dict())
+    theirs = json.loads(cli("putt", "--field", "flat", "--ball", "1.0,0.3", "--world", "--angle",
+                            "2.8", "--speed", "0.6", "--json").stdout)
+    ours.pop("timing"), theirs.pop("timing")
+    assert ours == theirs and abs(ours["aim"] - 2.8) < 1e-12  # turned: the fixed arm cannot
+    assert flat.putt(0.2, 0.6, ball=(1.0, 0.3), world=True).aim == 0.0  # within its reach
+    with pytest.raises(ValueError, match="world"):
+        flat.putt(0.0, 0.6, world=True, aim=1.0)
+
+
 def test_putt_on_another_hole_and_field():
     hill = minigolf.System(field="regular-hill")
     r = hill.putt(0.0, 1.5, hole=(1.8, 0.1), ball_only=True)
