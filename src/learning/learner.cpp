@@ -183,6 +183,21 @@ Predictions checked(Predictions p) {
   return p;
 }
 
+/// The columns of `queries` (by m's inputs) that m's prior reads, in its order; the queries as
+/// they are when the inputs agree.
+Eigen::MatrixXd prior_columns(const Model& m, const Eigen::MatrixXd& queries) {
+  if (m.prior->input_names == m.input_names) return queries;
+  Eigen::MatrixXd q(queries.rows(), m.prior->num_inputs());
+  for (int c = 0; c < m.prior->num_inputs(); ++c) {
+    const auto& name = m.prior->input_names[static_cast<std::size_t>(c)];
+    const auto at = std::find(m.input_names.begin(), m.input_names.end(), name);
+    if (at == m.input_names.end())
+      throw InputError(fmt::format("predict: the prior's input '{}' is not the model's", name));
+    q.col(c) = queries.col(at - m.input_names.begin());
+  }
+  return q;
+}
+
 }  // namespace
 
 Predictions predict(const Model& m, const Eigen::MatrixXd& queries) {
@@ -199,7 +214,7 @@ Predictions predict(const Model& m, const Eigen::MatrixXd& queries) {
   if (m.prior) {
     Model residual = m;
     residual.prior.reset();
-    const Predictions base = predict(*m.prior, queries);
+    const Predictions base = predict(*m.prior, prior_columns(m, queries));
     const Predictions correction = predict(residual, queries);
     p.mean = base.mean + correction.mean;
     p.std = (base.std.array().square() + correction.std.array().square()).sqrt().matrix();

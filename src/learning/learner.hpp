@@ -93,9 +93,11 @@ struct Model {
   /// them as they are. File key "fixed" (optional).
   std::vector<std::pair<std::string, double>> fixed;
   /// A residual model over a prior (adaptation, docs/reality.md): when set, this model's GPs learn
-  /// the correction to `prior`, with the same inputs and outputs; a prediction is the prior's
-  /// plus this model's, its std the root of their squares summed. File key "prior" (optional,
-  /// a whole learner model; at most kMaxPriorDepth deep).
+  /// the correction to `prior`, with the same outputs and inputs that include every one of the
+  /// prior's (the prior reads its own columns by name: a residual may add the ball's position to
+  /// a prior of xi); a prediction is the prior's plus this model's, its std the root of their
+  /// squares summed. File key "prior" (optional, a whole learner model; at most kMaxPriorDepth
+  /// deep).
   std::shared_ptr<const Model> prior;
   /// The fixed value `name`, or nullptr.
   const double* fixed_value(std::string_view name) const {

@@ -1,5 +1,6 @@
 // Learner model files: the JSON form of a Model (format "minigolf-learner", format_version
 // kModelFormatVersion), its reading with an error naming the field, save and load.
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -244,8 +245,12 @@ Model model_from_json_at(const nlohmann::json& j, std::string_view where, int de
           fmt::format("{}.prior: residual models nest at most {} deep", where, kMaxPriorDepth));
     auto prior = std::make_shared<Model>(
         model_from_json_at(j["prior"], fmt::format("{}.prior", where), depth + 1));
-    if (prior->input_names != m.input_names || prior->output_names != m.output_names)
-      throw InputError(fmt::format("{}.prior: expected the residual's inputs and outputs", where));
+    for (const auto& name : prior->input_names)
+      if (std::find(m.input_names.begin(), m.input_names.end(), name) == m.input_names.end())
+        throw InputError(
+            fmt::format("{}.prior: input '{}': expected among the residual's inputs", where, name));
+    if (prior->output_names != m.output_names)
+      throw InputError(fmt::format("{}.prior: expected the residual's outputs", where));
     if (prior->fixed != m.fixed)
       throw InputError(fmt::format("{}.prior: expected the residual's fixed values", where));
     m.prior = std::move(prior);

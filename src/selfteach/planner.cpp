@@ -82,7 +82,14 @@ Planner::Planner(const system::System& system, const field::Situations& region, 
   outputs_ = region_.learn_speed ? 2 : 1;
   if (prior_model_) {
     const auto& m = *prior_model_;
+    // The residual reads the prior's inputs and, from balls anywhere, what the region needs
+    // besides (a prior of xi alone cannot tell balls apart on a sloped lane).
+    const auto needed = std::move(inputs_);
     inputs_ = m.input_names;
+    if (region.balls)
+      for (const auto& name : needed)
+        if (std::find(inputs_.begin(), inputs_.end(), name) == inputs_.end())
+          inputs_.push_back(name);
     if (output_index(m, "angle") < 0) throw InputError("prior model: expected an output 'angle'");
     if (region_.learn_speed && output_index(m, "speed") < 0)
       throw InputError(
@@ -202,7 +209,7 @@ Label Planner::pseudo_label(const PuttRecord& p, int index) const {
 std::array<double, 2> Planner::prior(const field::Situation& situation) const {
   if (!prior_model_) return prior_club(sys_.field(), region_, situation, arrival_, bias_, ratio_);
   const auto& m = *prior_model_;
-  const Eigen::MatrixXd q = input_row(sys_.field(), inputs_, situation).transpose();
+  const Eigen::MatrixXd q = input_row(sys_.field(), m.input_names, situation).transpose();
   const learning::Predictions p = learning::predict(m, q);
   const int ia = output_index(m, "angle"), is = output_index(m, "speed");
   double v = region_.speed;
@@ -255,15 +262,17 @@ learning::Model Planner::residual_model(const std::vector<Label>& labels, int pu
   if (use.empty()) return m;  // nothing known yet: the prior as it is
   const auto n = static_cast<Eigen::Index>(use.size());
   Eigen::MatrixXd x(n, static_cast<Eigen::Index>(inputs_.size()));
-  for (Eigen::Index i = 0; i < n; ++i)
-    x.row(i) = input_row(sys_.field(), inputs_,
-                         field::Situation{use[static_cast<std::size_t>(i)].ball,
-                                          use[static_cast<std::size_t>(i)].hole})
-                   .transpose();
-  const learning::Predictions base = learning::predict(m, x);
+  Eigen::MatrixXd x_prior(n, m.num_inputs());
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const field::Situation s{use[static_cast<std::size_t>(i)].ball,
+                             use[static_cast<std::size_t>(i)].hole};
+    x.row(i) = input_row(sys_.field(), inputs_, s).transpose();
+    x_prior.row(i) = input_row(sys_.field(), m.input_names, s).transpose();
+  }
+  const learning::Predictions base = learning::predict(m, x_prior);
   learning::Model out;
   out.method = learning::Method::kGpr;
-  out.input_names = m.input_names;
+  out.input_names = inputs_;
   out.output_names = m.output_names;
   out.seed = m.seed;
   out.fixed = m.fixed;

@@ -82,10 +82,10 @@ TEST(LearningWhilePlaying, FromBallsAnywhere) {
     off_tee += fixed.rows[i].ball != hill().field().tee;
   }
   EXPECT_EQ(off_tee, 30);
-  // A residual shares its prior's inputs (the model file holds one list).
-  EXPECT_EQ(learned.learned.input_names, start.input_names);
-  // Measured: 7 of 30 without learning, 15 with the residual, 19 appending (the three examples'
-  // inputs, xi alone, cannot see the ball's place on the hill).
+  // The residual reads the prior's inputs and the ball's position (the hill needs it).
+  EXPECT_EQ(learned.learned.input_names,
+            (std::vector<std::string>{"xi_x", "xi_y", "ball_x", "ball_y"}));
+  // Measured: 7 of 30 without learning, 16 with the residual, 19 appending.
   EXPECT_GE(learned.evaluation.sunk, fixed.sunk + 5)
       << fixed.sunk << " " << learned.evaluation.sunk;
   EvaluateOptions append = o;

@@ -181,6 +181,42 @@ TEST(LearningModel, AResidualModelAddsItsCorrectionToItsPriorAndRoundTrips) {
   }
 }
 
+// A residual may read more inputs than its prior (the ball's position over a prior of xi): the
+// prior reads its own columns by name, wherever they stand.
+TEST(LearningModel, AResidualMayAddInputsItsPriorReadsItsOwnByName) {
+  testing::ScratchDir dir;
+  const Dataset d = flat_field(20, 21);
+  const auto prior = std::make_shared<Model>(train(d, options(Method::kGpr)));
+  Dataset r = d;
+  r.input_names = {"ball_x", "xi_y", "xi_x"};  // the prior's columns moved, one added
+  r.inputs.resize(d.inputs.rows(), 3);
+  r.inputs << Eigen::VectorXd::LinSpaced(d.inputs.rows(), 0.0, 0.4), d.inputs.col(1),
+      d.inputs.col(0);
+  r.outputs = 0.01 * r.inputs.col(0).replicate(1, 2);  // a correction along ball_x
+  Model residual = train(r, options(Method::kGpr));
+  residual.prior = prior;
+  const Eigen::MatrixXd q = flat_field(10, 22).inputs;
+  Eigen::MatrixXd wide(q.rows(), 3);
+  wide << Eigen::VectorXd::Constant(q.rows(), 0.2), q.col(1), q.col(0);
+  Model alone = residual;
+  alone.prior.reset();
+  const Predictions p = predict(residual, wide);
+  EXPECT_TRUE(
+      same_bits(p.mean, Eigen::MatrixXd(predict(*prior, q).mean + predict(alone, wide).mean)));
+  const auto path = dir / "wide.json";
+  save_model(residual, path);
+  EXPECT_TRUE(same_bits(predict(load_model(path), wide).mean, p.mean));
+  // A prior input the residual lacks is refused, naming it.
+  auto j = model_to_json(residual);
+  j["inputs"] = {"ball_x", "xi_y", "ball_y"};
+  try {
+    model_from_json(j, "m.json");
+    ADD_FAILURE() << "a prior input missing from the residual was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("xi_x"), std::string::npos) << e.what();
+  }
+}
+
 TEST(LearningModel, SameSeedSameModel) {
   const Dataset d = flat_field(20, 15);
   for (Method m : {Method::kGpr, Method::kGmr, Method::kJointGmr}) {
