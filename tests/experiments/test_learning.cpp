@@ -28,12 +28,18 @@ learning::Model three_example_model() {
   return learning::train(d, o);
 }
 
-TEST(LearningWhilePlaying, OutcomesJoinTheModelAndItImproves) {
-  const auto region = hill().field().situations;
+/// 30 test situations of seed 3, without the oracle (learning while playing refuses it).
+EvaluateOptions thirty_situations() {
   EvaluateOptions o;
   o.situations = 30;
   o.seed = 3;
   o.oracle = false;
+  return o;
+}
+
+TEST(LearningWhilePlaying, OutcomesJoinTheModelAndItImproves) {
+  const auto region = hill().field().situations;
+  const EvaluateOptions o = thirty_situations();
   const learning::Model start = three_example_model();
   const Evaluation fixed = evaluate_model(hill(), start, region, o);
   const LearningEvaluation learned = evaluate_learning(hill(), start, region, o);
@@ -68,10 +74,7 @@ TEST(LearningWhilePlaying, OutcomesJoinTheModelAndItImproves) {
 // labels keep that ball.
 TEST(LearningWhilePlaying, FromBallsAnywhere) {
   const auto region = field::region_from_spec(hill().field(), "", "box:0,0.4:-0.2,0.2:2,2");
-  EvaluateOptions o;
-  o.situations = 30;
-  o.seed = 3;
-  o.oracle = false;
+  const EvaluateOptions o = thirty_situations();
   const learning::Model start = three_example_model();
   const Evaluation fixed = evaluate_model(hill(), start, region, o);
   const LearningEvaluation learned = evaluate_learning(hill(), start, region, o);
