@@ -390,6 +390,20 @@ std::vector<std::string> list_shipped_fields() {
   return names;
 }
 
+double obstacle_top(const Field& f, const Obstacle& ob) {
+  const Footprint fp = ob.footprint();
+  const double c = std::cos(fp.yaw), s = std::sin(fp.yaw);
+  double ground = -1e9;
+  const int n = 8;
+  for (int u = 0; u <= n; ++u)
+    for (int v = 0; v <= n; ++v) {
+      const double lu = fp.half[0] * (2.0 * u / n - 1.0), lv = fp.half[1] * (2.0 * v / n - 1.0);
+      ground = std::max(ground,
+                        f.height(fp.center[0] + c * lu - s * lv, fp.center[1] + s * lu + c * lv));
+    }
+  return ground + ob.height;
+}
+
 void check_ball_position(const field::Field& field, std::array<double, 2> ball,
                          const std::string& what) {
   const auto& b = field.bounds;

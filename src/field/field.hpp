@@ -76,6 +76,10 @@ void check_hole_position(const Field& field, std::array<double, 2> position);
 /// its borders and clear of every obstacle.
 void check_ball_position(const Field& field, std::array<double, 2> ball, const std::string& what);
 
+/// [m] Height of an obstacle's top: `height` above the highest ground under its footprint
+/// (sampled on a 9 x 9 grid).
+double obstacle_top(const Field& field, const Obstacle& obstacle);
+
 /// True if the segment a -> b passes within `clearance` [m] of an obstacle (sampled 1 cm apart):
 /// a ball rolling straight along it would meet one.
 bool line_blocked(const Field& field, std::array<double, 2> a, std::array<double, 2> b,

@@ -9,11 +9,9 @@
 namespace mg::field {
 
 inline constexpr std::size_t kMaxObstacles = 64;
-/// The most restitution a border or obstacle may have. The world makes a wall bouncier by a lower
-/// damping ratio of its contact, and MuJoCo's contact stiffness grows as 1 / ratio^2: above this,
-/// at the 1 ms step, a 3 m/s ball gains energy off a wall (measured: 0.7 threw it off the lane,
-/// 0.75 at five times its speed).
-inline constexpr double kMaxWallRestitution = 0.65;
+/// The most restitution a border or obstacle may have (sim/walls resolves any value in 0..1 without
+/// gaining energy; a livelier wall than this is not a minigolf border).
+inline constexpr double kMaxWallRestitution = 0.95;
 
 enum class ObstacleType { kWall, kBlock };
 std::string to_string(ObstacleType type);

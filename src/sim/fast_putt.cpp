@@ -33,6 +33,8 @@ struct Obstacles {
   double hole_x = 0.0, hole_y = 0.0, hole_reach = 0.0;  ///< ... or to the hole's centre [m]
 };
 
+double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
 // Contacts start at zero distance: this much more covers rounding in MuJoCo's geometry [m].
 constexpr double kSafety = 1e-5;
 
@@ -134,6 +136,7 @@ Touching touching(const World& world, const mjData* d) {
     if (c.dist >= 0.0) continue;
     (world.is_ball_ground(c) ? t.ground : t.wall) = true;
   }
+  t.wall = t.wall || world.wall_impact(d) > 0.0;  // borders and obstacles: sim/walls
   return t;
 }
 
@@ -172,10 +175,10 @@ class HybridPutt {
   PuttOutcome run() {
     bool decided = false;
     while (steps_ < max_steps_ && !decided) {
-      if (!in_mujoco_ && !exact_ && free_path_ <= 0.0) {
+      if (!in_mujoco_ && !exact_ && free_path_ <= next_travel()) {
         free_path_ = clearance(obstacles_, ball_.c);
-        if (free_path_ <= 0.0) to_mujoco(world_, d_, ball_, t_);
-        in_mujoco_ = free_path_ <= 0.0;
+        in_mujoco_ = free_path_ <= next_travel();
+        if (in_mujoco_) to_mujoco(world_, d_, ball_, t_);
       }
       if (in_mujoco_ || exact_ || !step_ground()) step_mujoco();
       ++steps_;
@@ -210,6 +213,13 @@ class HybridPutt {
     return true;
   }
 
+  // [m] How far the ball may move in the next step (and a little more): the World resolves a
+  // border or obstacle at the end of the step that reaches it (sim/walls), so that step is
+  // MuJoCo's.
+  double next_travel() const {
+    return 1.01 * gm_.timestep * std::sqrt(dot3(ball_.v, ball_.v)) + 1e-6;
+  }
+
   void track_contact(bool touching) {
     if (!touching) airtime_ += gm_.timestep;
     grounded_since_ = touching ? std::min(grounded_since_, t_) : kNever;
@@ -226,7 +236,7 @@ class HybridPutt {
       ++wall_hits_;
     at_wall_ = now.wall;
     free_path_ = clearance(obstacles_, ball_.c);
-    in_mujoco_ = free_path_ <= 0.0;
+    in_mujoco_ = free_path_ <= next_travel();
   }
 
   // Starts over in MuJoCo exactly as simulate_putt does (the same bits) and stays there until

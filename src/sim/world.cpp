@@ -76,6 +76,9 @@ World::World(field::Field field, const WorldOptions& options)
       data[r * ncol + c] = static_cast<float>(std::clamp((z - z0) / elevation, 0.0, 1.0));
     }
 
+  walls_ = make_walls(field_);
+  walls_.inertia_ratio = m->body_inertia[3 * ids_.ball_body] /
+                         (m->body_mass[ids_.ball_body] * field_.ball.radius * field_.ball.radius);
   fine_model_.reset(mj_copyModel(nullptr, model_.get()));
   fine_model_->opt.timestep = model_->opt.timestep / kImpactSubsteps;
 }
@@ -230,6 +233,8 @@ void World::step_fine(mjData* d) const {
 
 void World::step_with(const mjModel* m, mjData* d) const {
   update_ground_contact(d);
+  mjtNum* centre = d->qpos + ids_.ball_qpos;
+  const std::array<double, 3> previous{centre[0], centre[1], centre[2]};
   // Split step: collisions for the current state first, so the rolling-resistance torque acts
   // only while the ball touches the ground now (a torque from the last contact force applied
   // during a hop would spin the ball down in the air).
@@ -277,7 +282,32 @@ void World::step_with(const mjModel* m, mjData* d) const {
   }
   mj_step2(m, d);
   d->userdata[kUserGroundNormal] = ground_normal_force(d);
+  resolve_wall_contacts(d, previous);
 }
+
+void World::resolve_wall_contacts(mjData* d, const std::array<double, 3>& previous) const {
+  mjtNum* q = d->qpos + ids_.ball_qpos;
+  mjtNum* qv = d->qvel + ids_.ball_dof;
+  std::array<double, 3> c{q[0], q[1], q[2]}, v{qv[0], qv[1], qv[2]}, w;
+  d->userdata[kUserWallImpact] = 0.0;
+  if (wall_clearance(walls_, c) > std::sqrt((c[0] - previous[0]) * (c[0] - previous[0]) +
+                                            (c[1] - previous[1]) * (c[1] - previous[1]) +
+                                            (c[2] - previous[2]) * (c[2] - previous[2])))
+    return;
+  mju_rotVecQuat(w.data(), qv + 3, q + 3);  // a free joint's angular velocity is in its body frame
+  const WallImpact impact = resolve_walls(walls_, field_, previous, c, v, w);
+  if (impact.prism < 0 && c[0] == q[0] && c[1] == q[1] && c[2] == q[2]) return;
+  mjtNum inverse[4];
+  mju_negQuat(inverse, q + 3);
+  mju_rotVecQuat(qv + 3, w.data(), inverse);
+  for (int k = 0; k < 3; ++k) {
+    q[k] = c[k];
+    qv[k] = v[k];
+  }
+  d->userdata[kUserWallImpact] = impact.normal_speed;
+}
+
+double World::wall_impact(const mjData* d) const { return d->userdata[kUserWallImpact]; }
 
 void World::update_ground_contact(mjData* d) const {
   // Foot point p of the ball centre c on the surface: c = p + r n(p), solved by fixed-point

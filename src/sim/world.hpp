@@ -28,6 +28,7 @@
 
 #include "field/field.hpp"
 #include "sim/mujoco_handles.hpp"
+#include "sim/walls.hpp"
 
 namespace mg::sim {
 
@@ -117,6 +118,8 @@ class World {
   const field::Field& field() const { return field_; }
   const WorldOptions& options() const { return options_; }
   const WorldIds& ids() const { return ids_; }
+  /// The borders and obstacles the ball bounces off (drawn by MuJoCo, collided by sim/walls).
+  const Walls& walls() const { return walls_; }
   /// The generated MJCF text (for debugging and `minigolf field show --mjcf`).
   const std::string& mjcf() const { return mjcf_; }
 
@@ -145,7 +148,8 @@ class World {
   void place_ball(mjData* d, std::array<double, 2> xy) const;
 
   /// One physics step: `mj_step1`, the rolling-resistance torque (ball-ground contact now, normal
-  /// force of the last solve), `mj_step2`.
+  /// force of the last solve), `mj_step2`, then the ball's impacts on borders and obstacles
+  /// (resolve_walls; the speed into the face is left in userdata[kUserWallImpact]).
   /// Real-time safe: no allocation, no exceptions.
   void step(mjData* d) const;
   /// The same time (one timestep) in kImpactSubsteps steps of a copy of the model with a
@@ -154,6 +158,9 @@ class World {
   /// scattered with a std of 0.034 over club speeds 0.01 m/s apart; 0.012 at 0.5 ms).
   void step_fine(mjData* d) const;
   static constexpr int kImpactSubsteps = 4;
+
+  /// [m/s] The speed into a border or obstacle face resolved in the last step of `d` (0: none).
+  double wall_impact(const mjData* d) const;
 
   /// Total normal force of ground contacts on the ball in the current `mjData` [N].
   double ground_normal_force(const mjData* d) const;
@@ -171,8 +178,10 @@ class World {
   void set_segmented_cup(mjData* d, std::array<double, 2> position) const;
 
   void step_with(const mjModel* m, mjData* d) const;
+  void resolve_wall_contacts(mjData* d, const std::array<double, 3>& previous) const;
 
   ModelPtr model_;
+  Walls walls_;
   ModelPtr fine_model_;  ///< model_ with timestep / kImpactSubsteps (step_fine)
   std::array<mjtNum, 3> lane_contact_pos_{};  ///< kHeightfield: its body's place [m] (as compiled)
   WorldIds ids_;

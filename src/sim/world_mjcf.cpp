@@ -51,7 +51,6 @@ std::string world_mjcf(const field::Field& f, const WorldOptions& o, const std::
   const double wall_t = f.borders.thickness;
   const double wall_bottom = z_min - 0.05, wall_top = z_max + f.borders.height;
   const double wall_hz = 0.5 * (wall_top - wall_bottom), wall_cz = 0.5 * (wall_top + wall_bottom);
-  const double wall_zeta = damping_ratio_for_restitution(f.borders.restitution);
   const double hole_r = 0.5 * f.hole.diameter;
   const double seg_half = hole_r * std::tan(kPi / o.hole_segments) + 0.002;
   const double seg_t = 0.01;
@@ -98,37 +97,27 @@ std::string world_mjcf(const field::Field& f, const WorldOptions& o, const std::
   const auto wall = [&](const char* name, double px, double py, double hx, double hy) {
     x += fmt::format(
         R"(    <geom name="{}" type="box" pos="{} {} {}" size="{} {} {}" rgba="0.45 0.3 0.2 1"
-          contype="{}" conaffinity="{}" condim="3" priority="1" friction="0.2 0 0" solref="0.004 {}"/>
+          contype="0" conaffinity="0"/>
 )",
-        name, px, py, wall_cz, hx, hy, wall_hz, kLaneGroup, kNoAffinity, wall_zeta);
+        name, px, py, wall_cz, hx, hy, wall_hz);
   };
   wall("border_x_min", b[0] - 0.5 * wall_t, cy, 0.5 * wall_t, ry + wall_t);
   wall("border_x_max", b[1] + 0.5 * wall_t, cy, 0.5 * wall_t, ry + wall_t);
   wall("border_y_min", cx, b[2] - 0.5 * wall_t, rx, 0.5 * wall_t);
   wall("border_y_max", cx, b[3] + 0.5 * wall_t, rx, 0.5 * wall_t);
-  // Obstacles: boxes over their footprints, from the borders' bottom to `height` above the
-  // highest ground under them, bouncing the ball like the borders with their own restitution.
+  // Borders and obstacles are drawn here and collided by sim/walls (an impulse with their
+  // restitution: MuJoCo's soft contacts created energy). Obstacles: boxes over their footprints,
+  // from the borders' bottom to `height` above the highest ground under them.
   for (std::size_t i = 0; i < f.obstacles.size(); ++i) {
     const field::Obstacle& ob = f.obstacles[i];
     const field::Footprint fp = ob.footprint();
-    const double c = std::cos(fp.yaw), s = std::sin(fp.yaw);
-    double ground = -1e9;
-    const int n = 8;
-    for (int u = 0; u <= n; ++u)
-      for (int v = 0; v <= n; ++v) {
-        const double lu = fp.half[0] * (2.0 * u / n - 1.0), lv = fp.half[1] * (2.0 * v / n - 1.0);
-        ground = std::max(ground,
-                          f.height(fp.center[0] + c * lu - s * lv, fp.center[1] + s * lu + c * lv));
-      }
-    const double top = ground + ob.height;
+    const double top = field::obstacle_top(f, ob);
     x += fmt::format(
         R"(    <geom name="obstacle_{}" type="box" pos="{} {} {}" size="{} {} {}" quat="{} 0 0 {}"
-          rgba="0.55 0.35 0.22 1" contype="{}" conaffinity="{}" condim="3" priority="1"
-          friction="0.2 0 0" solref="0.004 {}"/>
+          rgba="0.55 0.35 0.22 1" contype="0" conaffinity="0"/>
 )",
         i, fp.center[0], fp.center[1], 0.5 * (top + wall_bottom), fp.half[0], fp.half[1],
-        0.5 * (top - wall_bottom), std::cos(0.5 * fp.yaw), std::sin(0.5 * fp.yaw), kLaneGroup,
-        kNoAffinity, damping_ratio_for_restitution(ob.restitution));
+        0.5 * (top - wall_bottom), std::cos(0.5 * fp.yaw), std::sin(0.5 * fp.yaw));
   }
   if (heightfield) x += "    </body>\n";
   x += fmt::format(R"(    <body name="ball" pos="{} {} {}">

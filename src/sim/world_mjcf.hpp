@@ -10,9 +10,10 @@
 namespace mg::sim {
 
 /// mjData::userdata of a world (the model's nuserdata): the hole the ground is cut away under
-/// (centre [m], radius [m]) and the last solved ground normal force [N].
+/// (centre [m], radius [m]), the last solved ground normal force [N] and the speed into a border
+/// or obstacle face resolved in the last step [m/s] (0: none; sim/walls.hpp).
 inline constexpr int kUserHoleX = 0, kUserHoleY = 1, kUserHoleRadius = 2, kUserGroundNormal = 3,
-                     kUserSize = 4;
+                     kUserWallImpact = 4, kUserSize = 5;
 
 /// [m] How far the ground's collision geom drops while the ball's centre is over the hole
 /// opening: out of reach, so the cup below catches the ball (World::update_ground_contact).

@@ -190,20 +190,23 @@ TEST(FastPutt, ThreadsSharingAWorldGiveTheSerialBits) {
     for (std::size_t i = 0; i < putts.size(); ++i) expect_same_bits(out[i], serial[i]);
 }
 
-// A putt that hops off walls for long is replayed in MuJoCo from its start: until it is calm
-// (at least until its airtime and wall hits called for the replay) it is simulate_putt's bit for
-// bit.
+// A putt that hits walls often enough is replayed in MuJoCo from its start: until it is calm (at
+// least until its wall hits called for the replay) it is simulate_putt's bit for bit. (Since
+// walls are impulses, sim/walls, MuJoCo agrees with itself on every putt and the default
+// thresholds seldom call a replay; two fast hits call it here.)
 TEST(FastPutt, ChaoticPuttIsReplayedInMujoco) {
   const World world(field::load_field("bank-shot"));
   auto d = world.make_data();
   const auto hole = world.field().hole.position;
   FastPuttOptions no_replay;
   no_replay.replay_airtime = 0.0;
+  FastPuttOptions eager;
+  eager.replay_wall_hits = 2;
   int replayed = 0;
-  for (PuttRequest q : random_putts(world.field(), 200, 5)) {
+  for (PuttRequest q : random_putts(world.field(), 60, 5)) {
     if (q.speed < 3.0) continue;
     q.record_interval = 0.001;
-    const PuttOutcome fast = fast_putt(world, d.get(), hole, q);
+    const PuttOutcome fast = fast_putt(world, d.get(), hole, q, {}, eager);
     const PuttOutcome without = fast_putt(world, d.get(), hole, q, {}, no_replay);
     if (fast.steps <= without.steps + 200) continue;  // not replayed
     ++replayed;
@@ -213,7 +216,7 @@ TEST(FastPutt, ChaoticPuttIsReplayedInMujoco) {
     while (same < fast.trajectory.size() && same < slow.trajectory.size() &&
            std::memcmp(&fast.trajectory[same], &slow.trajectory[same], sizeof(BallSample)) == 0)
       ++same;
-    EXPECT_GE(same, 1200u);
+    EXPECT_GE(same, 300u);
   }
   EXPECT_GE(replayed, 2);
   RecordProperty("replayed", replayed);
