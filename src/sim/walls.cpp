@@ -54,43 +54,9 @@ Nearest nearest(const WallPrism& w, const Vec3& p) {
 double bounce(const Walls& walls, const field::Field& field, const WallPrism& prism,
               const Nearest& at, Vec3& c, Vec3& v, Vec3& w) {
   const Vec3& n = at.normal;
-  const double r = walls.radius, k = walls.inertia_ratio;
+  const double r = walls.radius;
   const bool face = std::abs(n[2]) < 1e-9;
-  const double vn = dot(v, n);
-  const double into = vn < 0.0 ? -vn : 0.0;
-  if (into > 0.0) {
-    const double e = prism.restitution;
-    const double jn = (1.0 + e) * into;  // normal impulse per unit mass [m/s]
-    const Vec3 arm{-r * n[0], -r * n[1], -r * n[2]};
-    const Vec3 spin_part = cross(w, arm);
-    Vec3 slip{v[0] + spin_part[0], v[1] + spin_part[1], v[2] + spin_part[2]};
-    const double slip_n = dot(slip, n);
-    for (int i = 0; i < 3; ++i) slip[i] -= slip_n * n[i];
-    Vec3 j{};        // friction impulse per unit mass [m/s]
-    Vec3 j_lin{};    // its part that changes the centre's velocity
-    if (face) {
-      // Along the face (horizontal): the centre and the spin both slow the slip; across it
-      // (vertical): the spin alone (no lift, see walls.hpp).
-      const Vec3 t1{-n[1], n[0], 0.0};
-      const double u1 = dot(slip, t1), u2 = slip[2];
-      // Friction only slows the centre along the face: side spin never speeds the ball up.
-      const double j1 = u1 * dot(v, t1) > 0.0 ? -u1 / (1.0 + 1.0 / k) : 0.0, j2 = -u2 * k;
-      const double size = std::hypot(j1, j2);
-      const double s = size > kWallFriction * jn ? kWallFriction * jn / size : 1.0;
-      j = {s * j1 * t1[0], s * j1 * t1[1], s * j2};
-      j_lin = {s * j1 * t1[0], s * j1 * t1[1], 0.0};
-    } else {
-      const double size = std::sqrt(dot(slip, slip)) / (1.0 + 1.0 / k);
-      const double s = size > kWallFriction * jn ? kWallFriction * jn / size : 1.0;
-      for (int i = 0; i < 3; ++i) j[i] = -s * slip[i] / (1.0 + 1.0 / k);
-      j_lin = j;
-    }
-    const Vec3 dw = cross(arm, j);
-    for (int i = 0; i < 3; ++i) {
-      v[i] += j_lin[i] + jn * n[i];
-      w[i] += dw[i] / (k * r * r);
-    }
-  }
+  const double into = wall_impulse(n, prism.restitution, r, walls.inertia_ratio, v, w);
   // Out of the prism: mirrored off the contact plane by the restitution when the ball came in.
   const double depth = r - dot({c[0] - at.point[0], c[1] - at.point[1], c[2] - at.point[2]}, n);
   if (depth > 0.0) {
@@ -103,6 +69,56 @@ double bounce(const Walls& walls, const field::Field& field, const WallPrism& pr
 }
 
 }  // namespace
+
+double wall_impulse(const Vec3& n, double restitution, double r, double k, Vec3& v, Vec3& w) {
+  const double vn = dot(v, n);
+  if (!(vn < 0.0)) return 0.0;
+  const double into = -vn;
+  const bool face = std::abs(n[2]) < 1e-9;
+  const double jn = (1.0 + restitution) * into;  // normal impulse per unit mass [m/s]
+  const Vec3 arm{-r * n[0], -r * n[1], -r * n[2]};
+  const Vec3 spin_part = cross(w, arm);
+  Vec3 slip{v[0] + spin_part[0], v[1] + spin_part[1], v[2] + spin_part[2]};
+  const double slip_n = dot(slip, n);
+  for (int i = 0; i < 3; ++i) slip[i] -= slip_n * n[i];
+  Vec3 j{};      // friction impulse per unit mass [m/s]
+  Vec3 j_lin{};  // its part that changes the centre's velocity
+  if (face) {
+    // Along the face (horizontal): the centre and the spin both slow the slip; across it
+    // (vertical): the spin alone (no lift, see walls.hpp).
+    const Vec3 t1{-n[1], n[0], 0.0};
+    const double u1 = dot(slip, t1), u2 = slip[2];
+    // Friction only slows the centre along the face: side spin never speeds the ball up.
+    const double j1 = u1 * dot(v, t1) > 0.0 ? -u1 / (1.0 + 1.0 / k) : 0.0, j2 = -u2 * k;
+    const double size = std::hypot(j1, j2);
+    const double s = size > kWallFriction * jn ? kWallFriction * jn / size : 1.0;
+    j = {s * j1 * t1[0], s * j1 * t1[1], s * j2};
+    j_lin = {s * j1 * t1[0], s * j1 * t1[1], 0.0};
+  } else {
+    const double size = std::sqrt(dot(slip, slip)) / (1.0 + 1.0 / k);
+    const double s = size > kWallFriction * jn ? kWallFriction * jn / size : 1.0;
+    for (int i = 0; i < 3; ++i) j[i] = -s * slip[i] / (1.0 + 1.0 / k);
+    j_lin = j;
+  }
+  const Vec3 dw = cross(arm, j);
+  for (int i = 0; i < 3; ++i) {
+    v[i] += j_lin[i] + jn * n[i];
+    w[i] += dw[i] / (k * r * r);
+  }
+  return into;
+}
+
+RollingRebound rolling_rebound(double restitution, double incidence, double inertia_ratio) {
+  // A unit ball rolling at unit speed into the face y = 0 from y > 0 (normal +y), then the slide
+  // on level ground until it rolls again: angular momentum about the contact point is kept, so
+  // it rolls at (v + k r w x z) / (1 + k).
+  const double k = inertia_ratio;
+  Vec3 v{std::sin(incidence), -std::cos(incidence), 0.0};
+  Vec3 w{-v[1], v[0], 0.0};  // z x v / r
+  wall_impulse({0.0, 1.0, 0.0}, restitution, 1.0, k, v, w);
+  const double vx = (v[0] + k * w[1]) / (1.0 + k), vy = (v[1] - k * w[0]) / (1.0 + k);
+  return {std::hypot(vx, vy), std::atan2(std::abs(vx), vy)};
+}
 
 Walls make_walls(const field::Field& f) {
   Walls walls;
@@ -123,8 +139,8 @@ Walls make_walls(const field::Field& f) {
   const double cx = 0.5 * (b[0] + b[1]), cy = 0.5 * (b[2] + b[3]);
   const double rx = 0.5 * (b[1] - b[0]), ry = 0.5 * (b[3] - b[2]);
   const double t = f.borders.thickness;
-  const auto add = [&walls](double x, double y, double hx, double hy, double c, double s,
-                            double lo, double hi, double e) {
+  const auto add = [&walls](double x, double y, double hx, double hy, double c, double s, double lo,
+                            double hi, double e) {
     walls.prisms[static_cast<std::size_t>(walls.count++)] = {x, y, hx, hy, c, s, lo, hi, e};
   };
   const double top = z_max + f.borders.height, e = f.borders.restitution;

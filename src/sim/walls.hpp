@@ -40,9 +40,9 @@ struct WallPrism {
 struct Walls {
   int count = 0;
   std::array<WallPrism, 4 + field::kMaxObstacles> prisms{};
-  double radius = 0.0;           ///< ball [m]
-  double inertia_ratio = 0.4;    ///< I / (m r^2) of the ball [-] (a solid sphere)
-  double sample_spacing = 0.0;   ///< [m] the swept path is checked this often (no tunnelling)
+  double radius = 0.0;          ///< ball [m]
+  double inertia_ratio = 0.4;   ///< I / (m r^2) of the ball [-] (a solid sphere)
+  double sample_spacing = 0.0;  ///< [m] the swept path is checked this often (no tunnelling)
 };
 
 /// The field's borders (boxes `borders.thickness` wide outside `bounds`, as the MJCF draws them)
@@ -54,6 +54,21 @@ struct WallImpact {
   double normal_speed = 0.0;  ///< [m/s] fastest speed into a face (0: no impact)
   int prism = -1;             ///< its index in Walls::prisms (-1: none)
 };
+
+/// The impact of a ball on a face with unit normal `n` (out of the face), per walls.hpp: changes
+/// the velocity `v` [m/s] and the angular velocity `w` [rad/s] (world frame) of a ball of radius
+/// `radius` [m] and I / (m r^2) = `inertia_ratio`. Returns the speed into the face (0: the ball
+/// leaves it, nothing changed).
+double wall_impulse(const std::array<double, 3>& n, double restitution, double radius,
+                    double inertia_ratio, std::array<double, 3>& v, std::array<double, 3>& w);
+
+/// How a ball rolling into a vertical face at `incidence` [rad from the face's normal] rolls away
+/// once the slide after the impact is over, on level ground.
+struct RollingRebound {
+  double speed = 0.0;  ///< rolling speed after / before [-]
+  double angle = 0.0;  ///< [rad] from the face's normal (pi/2: along the face)
+};
+RollingRebound rolling_rebound(double restitution, double incidence, double inertia_ratio = 0.4);
 
 /// Resolves the ball's contacts with the walls after a step that moved its centre from
 /// `previous` to `c` [m]: velocity `v` [m/s] and angular velocity `w` [rad/s], world frame.

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <optional>
 
+#include "sim/walls.hpp"
+
 namespace mg::teacher {
 namespace {
 
@@ -21,7 +23,17 @@ double norm(Vec a) { return std::hypot(a[0], a[1]); }
 struct Mirror {
   Vec p0, p1, n;
   double restitution;
-  Vec reflect(Vec p) const { return p - 2.0 * dot(p - p0, n) * n; }
+  /// Where the ball aims to reach `p` off this face: `p` mirrored, its distance from the face
+  /// scaled by `ratio` (tan of the rolling ball's angle out / in, sim::rolling_rebound; 1: the
+  /// mirror law).
+  Vec image(Vec p, double ratio) const { return p - (1.0 + ratio) * dot(p - p0, n) * n; }
+  /// The rebound ratio for a ball arriving along `d`.
+  double ratio(Vec d) const {
+    const double i = std::clamp(
+        std::acos(std::min(1.0, std::abs(dot(d, n)) / std::max(norm(d), 1e-12))), 0.01, 1.55);
+    const double out = sim::rolling_rebound(restitution, i).angle;
+    return out < 1.5 ? std::tan(out) / std::tan(i) : -1.0;  // -1: it rolls back into the face
+  }
   /// Where the segment a -> b crosses the mirror coming from its free side (nothing: it does not).
   std::optional<Vec> hit(Vec a, Vec b) const {
     const double da = dot(a - p0, n), db = dot(b - p0, n);
@@ -58,8 +70,8 @@ std::vector<Mirror> mirrors(const field::Field& f) {
 }
 
 /// The prior launch speed that rolls the legs (in order, `path` from the ball to the hole) and
-/// arrives at `arrival`: backwards from the hole, each bounce keeps the tangential speed and
-/// `restitution` of the normal one.
+/// arrives at `arrival`: backwards from the hole, each bounce keeps the share of the rolling speed
+/// the wall model gives (sim::rolling_rebound).
 double launch_speed(const std::vector<Vec>& path, const std::vector<const Mirror*>& hits,
                     double a_roll, double arrival) {
   double v2 = arrival * arrival;
@@ -68,9 +80,9 @@ double launch_speed(const std::vector<Vec>& path, const std::vector<const Mirror
     if (k >= 2) {  // path[k - 1] is a bounce: undo it
       const Mirror& m = *hits[k - 2];
       const Vec d = path[k - 1] - path[k - 2];
-      const double s = std::abs(dot(d, m.n)) / std::max(norm(d), 1e-9);  // sine of incidence
-      const double keep = (1.0 - s * s) + m.restitution * m.restitution * s * s;
-      v2 /= std::max(keep, 0.05);
+      const double i = std::acos(std::min(1.0, std::abs(dot(d, m.n)) / std::max(norm(d), 1e-9)));
+      const double keep = sim::rolling_rebound(m.restitution, i).speed;
+      v2 /= std::max(keep * keep, 0.05);
     }
   }
   return 7.0 / 5.0 * std::sqrt(v2);  // a launched ball keeps 5/7 of its speed once it rolls
@@ -100,18 +112,35 @@ std::vector<BankShot> bank_shots(const field::Field& f, std::array<double, 2> ba
   };
   const std::vector<Mirror> ms = mirrors(f);
   std::vector<BankShot> one, two;
+  // The bounce points: from the mirror law, then eight times with the rebound ratio of the
+  // incidence found (a rolling ball leaves a face closer to it than it came: the wall keeps its
+  // spin, sim/walls).
+  constexpr int kRefinements = 8;
   for (const Mirror& m : ms) {
     if (dot(hole - m.p0, m.n) <= 0.0) continue;
-    if (const auto b = m.hit(ball, m.reflect(hole))) add(one, {ball, *b, hole}, {&m});
+    double ratio = 1.0;
+    std::optional<Vec> b;
+    for (int it = 0; it <= kRefinements && ratio > 0.0; ++it) {
+      b = m.hit(ball, m.image(hole, ratio));
+      if (!b) break;
+      ratio = m.ratio(*b - ball);
+    }
+    if (b && ratio > 0.0) add(one, {ball, *b, hole}, {&m});
   }
   for (const Mirror& m1 : ms)
     for (const Mirror& m2 : ms) {
       if (&m1 == &m2 || dot(hole - m2.p0, m2.n) <= 0.0) continue;
-      const Vec h2 = m2.reflect(hole);
-      const auto b1 = m1.hit(ball, m1.reflect(h2));
-      if (!b1) continue;
-      const auto b2 = m2.hit(*b1, h2);
-      if (b2) add(two, {ball, *b1, *b2, hole}, {&m1, &m2});
+      double r1 = 1.0, r2 = 1.0;
+      std::optional<Vec> b1, b2;
+      for (int it = 0; it <= kRefinements && r1 > 0.0 && r2 > 0.0; ++it) {
+        const Vec h2 = m2.image(hole, r2);
+        b1 = m1.hit(ball, m1.image(h2, r1));
+        b2 = b1 ? m2.hit(*b1, h2) : std::nullopt;
+        if (!b2) break;
+        r1 = m1.ratio(*b1 - ball);
+        r2 = m2.ratio(*b2 - *b1);
+      }
+      if (b1 && b2 && r1 > 0.0 && r2 > 0.0) add(two, {ball, *b1, *b2, hole}, {&m1, &m2});
     }
   const auto shorter = [](const BankShot& x, const BankShot& y) {
     return x.path_length < y.path_length;

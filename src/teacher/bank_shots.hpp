@@ -8,9 +8,9 @@
 
 namespace mg::teacher {
 
-/// A bank shot: the launch whose path, folded at each bounce (the mirror law on the line the
-/// ball's centre bounces on: a border's or an obstacle face's, a ball radius out), reaches the
-/// hole.
+/// A bank shot: the launch whose path, folded at each bounce on the line the ball's centre bounces
+/// on (a border's or an obstacle face's, a ball radius out) by the rebound of a rolling ball
+/// (sim::rolling_rebound: it leaves the face at a flatter angle than it came), reaches the hole.
 struct BankShot {
   double angle = 0.0;         ///< [rad] launch direction
   double launch_speed = 0.0;  ///< [m/s] prior: rolls every leg, loses the normal speed's share

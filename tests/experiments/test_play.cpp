@@ -252,6 +252,11 @@ TEST(Reproduce, SameCsvFilesWithOneAndTwoThreads) {
   o.quick = true;
   o.fields = {"flat"};
   o.plots = false;
+  // The thesis's tables only: the parts beyond it have thread-count tests of their own (self-teach,
+  // curves, rounds), and with them this test took 10 minutes on a loaded machine.
+  o.beyond = false;
+  o.real_robot = false;
+  o.round_seeds = 0;
   o.threads = 1;
   o.out = temp("repro1");
   reproduce(o, [](const std::string&) {});

@@ -87,9 +87,11 @@ TEST(SelfTeach, OnABlockedLaneItPlaysBankShots) {
   const auto club = prior_club(f, f.situations, s, 0.4, 0.0, 1.6);
   EXPECT_GT(std::abs(club[0] - std::atan2(0.1, 2.0)), 0.3);
   SelfTeachOptions o;
-  o.budget = 25;
+  o.budget = 50;
   const SelfTeachResult r = self_teach(sys, f.situations, o);
-  EXPECT_GE(r.sunk, 1);  // measured: 3 of 25 (seed 1)
+  // Measured: 2 of 50 (seed 1); 3 of 25 before walls kept the ball's spin (sim/walls), since
+  // when banks lose more of their speed and bend after the bounce.
+  EXPECT_GE(r.sunk, 1);
 }
 
 TEST(SelfTeach, SameSeedSameModelWithOneAndTwoThreads) {

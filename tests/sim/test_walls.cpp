@@ -5,7 +5,6 @@
 #include <cmath>
 #include <random>
 
-
 #include <gtest/gtest.h>
 
 #include "core/rng.hpp"
@@ -42,12 +41,27 @@ TEST(Walls, HeadOnBounceLeavesAtRestitutionTimesTheSpeedWithoutLift) {
   EXPECT_EQ(v[1], 0.0);
   EXPECT_EQ(v[2], 0.0);  // no lift
   // The wall's friction slows the forward spin (Coulomb: 0.2 x the normal impulse at most).
-  const double dw = kWallFriction * (1.0 + f.borders.restitution) * speed /
-                    (walls.inertia_ratio * r);
+  const double dw =
+      kWallFriction * (1.0 + f.borders.restitution) * speed / (walls.inertia_ratio * r);
   EXPECT_NEAR(w[1], speed / r - dw, 1e-9);
   // Mirrored out of the wall: 1 mm in becomes 0.6 mm out.
   EXPECT_NEAR(c[0], x_max - r - f.borders.restitution * 0.001, 1e-12);
   EXPECT_NEAR(c[2], r, 1e-12);
+}
+
+// Head-on, a rolling ball returns at e at once, its spin slowed by the wall's friction (0.2 x
+// (1 + e) of its speed, Coulomb) but still forward; once it rolls again, angular momentum about the
+// contact point gives (e - k w' r) / (1 + k) of its speed. Obliquely it leaves flatter.
+TEST(Walls, ARollingBallReboundsAsAngularMomentumSays) {
+  const double e = 0.6, k = 0.4;
+  const double spin_left = 1.0 - kWallFriction * (1.0 + e) / k;  // w' r / v
+  EXPECT_NEAR(rolling_rebound(e, 0.0, k).speed, (e - k * spin_left) / (1.0 + k), 1e-12);
+  EXPECT_NEAR(rolling_rebound(e, 0.0, k).angle, 0.0, 1e-12);
+  for (double in : {0.2, 0.6, 1.0, 1.4}) {
+    const RollingRebound out = rolling_rebound(e, in, k);
+    EXPECT_GT(out.angle, in);
+    EXPECT_LT(out.speed, 1.0);
+  }
 }
 
 TEST(Walls, RandomImpactsNeverGainEnergyOrLiftOrSpeedAlongTheFace) {
