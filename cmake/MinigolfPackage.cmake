@@ -6,7 +6,7 @@
 include(CMakePackageConfigHelpers)
 
 # Every library of the public API, in the order of their layers (ARCHITECTURE.md).
-set(MINIGOLF_SUBSYSTEMS core field plant sim robot stats learning ds perception control system
+set(MINIGOLF_SUBSYSTEMS core field plant sim belief robot stats learning ds perception control system
     teacher selfteach experiments game viz)
 
 # minigolf::minigolf: all of them, and the entry headers of include/minigolf/.

@@ -18,5 +18,6 @@ void add_plot_commands(CLI::App& app);       // plot ds | strength | field | mod
 void add_plant_commands(CLI::App& app);      // plant random | show
 void add_adaptation_command(CLI::App& app);  // study adaptation (after add_study_commands)
 void add_round_command(CLI::App& app);       // play
+void add_identify_command(CLI::App& app);    // identify
 
 }  // namespace mg::cli

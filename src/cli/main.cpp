@@ -32,6 +32,7 @@ int run(int argc, char** argv) {
   mg::cli::add_plant_commands(app);
   mg::cli::add_adaptation_command(app);
   mg::cli::add_round_command(app);
+  mg::cli::add_identify_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ConversionError& e) {  // a malformed number: bad input like any other
