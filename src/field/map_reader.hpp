@@ -2,10 +2,15 @@
 /// Typed reading of YAML maps for the project's data files (fields, plants): every error names
 /// the file and the key path, and keys that were not asked about are an error (a typo must not
 /// fall back to a default silently). Internal to the parsers (links yaml-cpp).
+///
+/// `load_yaml` is the one way the project reads YAML text (fields, courses, plants, module
+/// configs, the thesis reference): exactly one document, no key twice in a mapping.
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -14,6 +19,61 @@
 #include "core/error.hpp"
 
 namespace mg::field {
+
+/// Nodes a YAML data file may have at most (aliases can make a short text a huge tree).
+inline constexpr std::size_t kMaxYamlNodes = 1000000;
+
+namespace detail {
+
+/// Throws InputError naming `source` and the key path of the first key given twice in one
+/// mapping (yaml-cpp keeps both; `node[key]` finds the first, iteration sees both). `budget`:
+/// the nodes it may still visit.
+inline void check_unique_keys(const YAML::Node& node, const std::string& source,
+                              const std::string& path, std::size_t& budget) {
+  if (budget == 0)
+    throw InputError(fmt::format("{}: more than {} YAML nodes (expected a small data file)", source,
+                                 kMaxYamlNodes));
+  --budget;
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      check_unique_keys(node[i], source, fmt::format("{}[{}]", path, i), budget);
+  } else if (node.IsMap()) {
+    std::set<std::string> keys;
+    for (const auto& kv : node) {
+      if (!kv.first.IsScalar()) continue;  // a complex key: the readers refuse it as unknown
+      const std::string& key = kv.first.Scalar();
+      const std::string full = path.empty() ? key : path + "." + key;
+      if (!keys.insert(key).second)
+        throw InputError(fmt::format("{}: {}: duplicate key (a key may appear once per mapping)",
+                                     source,
+                                     full.size() > 200 ? full.substr(0, 200) + "..." : full));
+      check_unique_keys(kv.second, source, full, budget);
+    }
+  }
+}
+
+}  // namespace detail
+
+/// Parses YAML text from `source` (named in every message): one document (a second `---`
+/// document is an error, not ignored), no key twice in a mapping. An empty text is a null node.
+/// Throws InputError "SOURCE: malformed YAML: ..." / "SOURCE: N YAML documents ..." /
+/// "SOURCE: KEY.PATH: duplicate key ...".
+inline YAML::Node load_yaml(std::string_view text, const std::string& source) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(std::string(text));
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}: malformed YAML: {}", source, e.what()));
+  }
+  if (documents.size() > 1)
+    throw InputError(
+        fmt::format("{}: {} YAML documents (expected one; a document after '---' would be ignored)",
+                    source, documents.size()));
+  if (documents.empty()) return YAML::Node();
+  std::size_t budget = kMaxYamlNodes;
+  detail::check_unique_keys(documents.front(), source, "", budget);
+  return documents.front();
+}
 
 /// Reads typed values from a YAML map, naming `source` and the key path in every error, and
 /// rejecting keys it was not asked about (typos must not silently fall back to defaults).
@@ -41,6 +101,17 @@ class MapReader {
     const YAML::Node n = node_[key];
     if (!n.IsScalar()) fail(full(key), "expected text");
     return n.as<std::string>();
+  }
+  /// A name shown on one line (progress, reports, CSV): text without control characters (a
+  /// newline would split the line); `fallback` when absent, checked alike.
+  std::string name(const std::string& key, const std::string& fallback) {
+    const std::string v = text(key, fallback);
+    for (unsigned char c : v)
+      if (c < 0x20 || c == 0x7f)
+        fail(full(key), fmt::format("expected a name without control characters, got one with "
+                                    "character {:#04x}",
+                                    c));
+    return v;
   }
   template <std::size_t N>
   std::array<double, N> numbers(const std::string& key) {
