@@ -83,7 +83,7 @@ TEST(ModuleConfig, DuplicateKeysAndSecondDocumentsAreRefused) {
   const std::pair<const char*, const char*> cases[] = {
       {"kp: 100\nkp: 200\n", "cfg: kp: duplicate key"},
       {"controller: {kp: 1, kp: 2}\n", "cfg: controller.kp: duplicate key"},
-      {"kp: 100\n---\nkp: 200\n", "cfg: 2 YAML documents"},
+      {"kp: 100\n---\nkp: 200\n", "cfg: a second YAML document at line 2"},
   };
   for (const auto& [text, message] : cases) {
     try {

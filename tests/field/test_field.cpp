@@ -88,7 +88,7 @@ TEST(Field, DuplicateKeysSecondDocumentsAndControlCharactersInTheNameAreRefused)
   expect_error_mentions(edited("- {type: plane}", "- {type: plane, type: bump}"),
                         "test.yaml: surface[0].type: duplicate key");
   expect_error_mentions(std::string(kMinimal) + "---\nname: second\n",
-                        "test.yaml: 2 YAML documents");
+                        "test.yaml: a second YAML document at line");
   expect_error_mentions(edited("name: test", "name: \"te\\nst\""),
                         "test.yaml: name: expected a name without control characters");
   expect_error_mentions(edited("name: test", "name: \"te\\x1bst\""), "0x1b");

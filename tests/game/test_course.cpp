@@ -119,7 +119,7 @@ TEST(Course, UnplayableAmbiguousOrMultiLineCoursesAreRefused) {
       {"format_version: 1\nname: x\nname: y\nholes: [{field: flat, par: 2}]\n",
        "c.yaml: name: duplicate key"},
       {head + "  - {field: flat, par: 2}\n---\nholes: [{field: l-shape, par: 9}]\n",
-       "c.yaml: 2 YAML documents (expected one"},
+       "c.yaml: a second YAML document at line 5 (expected one"},
       {"format_version: 1\nname: \"a\\nb\"\nholes: [{field: flat, par: 2}]\n",
        "c.yaml: name: expected a name without control characters"},
   };

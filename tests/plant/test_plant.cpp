@@ -35,6 +35,8 @@ TEST(Plant, OnlyTheVersionIsTheIdentity) {
 // and courses a plant now names its version. Item 6: a key given twice, or a second YAML
 // document, is refused (yaml-cpp read the first value and ignored the second document).
 TEST(Plant, TheVersionIsRequiredAndKeysAreUnique) {
+  // yaml-cpp's own multi-document reader never returned on ",": one line, at once.
+  EXPECT_EQ(error_of(","), "p.yaml: malformed YAML: nothing readable at line 1, column 1");
   EXPECT_EQ(error_of(""),
             "p.yaml: empty plant file (expected format_version: 1 and the keys that differ from "
             "the robot's model)");
@@ -46,7 +48,7 @@ TEST(Plant, TheVersionIsRequiredAndKeysAreUnique) {
   EXPECT_NE(error_of("format_version: 1\nformat_version: 1\n").find("format_version: duplicate"),
             std::string::npos);
   EXPECT_NE(error_of("format_version: 1\n---\narm: {club_speed_scale: 0.5}\n")
-                .find("p.yaml: 2 YAML documents"),
+                .find("p.yaml: a second YAML document at line 2"),
             std::string::npos);
 }
 
