@@ -64,7 +64,8 @@ void add_adaptation_command(CLI::App& app) {
   cmd->add_option("--threads", a->o.threads, "Threads (0: all cores; results do not depend on it)")
       ->check(CLI::Range(0, 256));
   cmd->add_flag("--no-oracle", a->no_oracle, "Skip the plants' oracle ceilings");
-  cmd->add_option("-o,--output", a->out, "CSV to write (one row per plant and checkpoint)");
+  cmd->add_option("-o,--output", a->out, "CSV to write (one row per plant and checkpoint)")
+      ->check(output_file());
   cmd->add_flag("--json", a->json, "Print one JSON object");
   cmd->callback([a] {
     a->o.learner = experiments::parse_curve_learner(a->learner);

@@ -2,6 +2,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -67,6 +68,48 @@ CLI::Validator list_of(const CLI::Validator& element) {
         return {};
       },
       element.get_description() + ",...");
+}
+
+CLI::Validator output_file() {
+  return CLI::Validator(
+      [](std::string& path) -> std::string {
+        try {
+          check_output_file(path);
+        } catch (const Error& e) {
+          return e.what();
+        }
+        return {};
+      },
+      "FILE");
+}
+
+void refuse_empty_values(CLI::App& app) {
+  const CLI::Validator non_empty(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "expected a value, got an empty one ('')" : "";
+      },
+      "");
+  for (CLI::Option* opt : app.get_options())
+    if (opt->get_type_size_max() > 0)
+      opt->transform(non_empty);  // first: its message, not a later validator's, is the one given
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    refuse_empty_values(*sub);
+}
+
+std::string one_line(std::string_view text, std::size_t max) {
+  std::string out;
+  out.reserve(std::min(text.size(), max + 40));
+  const auto add = [&](std::string_view part) {
+    for (unsigned char c : part) out += c < 0x20 || c == 0x7f ? '?' : static_cast<char>(c);
+  };
+  if (text.size() <= max) {
+    add(text);
+  } else {
+    add(text.substr(0, max / 2));
+    out += fmt::format(" ... ({} characters) ... ", text.size());
+    add(text.substr(text.size() - max / 4));
+  }
+  return out;
 }
 
 CLI::Validator unsigned_integer(std::uint64_t hi) {

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -61,6 +62,21 @@ CLI::Option* add_list_option(CLI::App* cmd, const std::string& name, std::vector
   opt->default_str(fmt::format("{}", fmt::join(target, ",")));
   return opt;
 }
+/// An output file: its target is checked when the command line is read, before any work
+/// (mg::check_output_file: the folder exists and is writable; the target is absent or a regular
+/// file, never a FIFO, link, device or folder). Every file-writing option carries it.
+CLI::Validator output_file();
+
+/// The one rule for empty values: every option and positional argument of `app` and its
+/// subcommands that takes a value refuses an empty one (`--angle ''`, `-o ''`) with a
+/// CLI::ValidationError naming it; an empty value would otherwise read as "not given" (a
+/// default, nothing written). Call once, after every subcommand is added.
+void refuse_empty_values(CLI::App& app);
+
+/// `text` as one line of at most `max` characters: control characters (a newline would split
+/// the line) shown as '?', a longer text shortened in the middle ("... (N characters) ...").
+std::string one_line(std::string_view text, std::size_t max = 1000);
+
 /// Putt counts on the command line at most (checkpoints of the learning curves).
 inline constexpr std::uint64_t kMaxCheckpoint = 1000000;
 /// A decimal integer in [0, hi]: no sign, no fraction, no exponent (CLI11's own conversion turns

@@ -13,6 +13,8 @@
 #include <memory>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "control/module_config.hpp"
@@ -71,12 +73,17 @@ void add_console_command(CLI::App& app) {
     // Ctrl-C (or kill, or a closed terminal) ends the session as `quit` does: the recording is
     // kept.
     defer_termination_signals();
+    std::string unwritten;  // why the recording at the end was not written
     {
       system::Session session(config, options, std::cout);
       const bool interactive = o->script.empty() && isatty(STDIN_FILENO) != 0;
       session.run(o->script.empty() ? std::cin : script, interactive);
+      if (!session.close()) unwritten = session.recording_error();
     }
     if (const int sig = termination_signal()) terminate_by_signal(sig);
+    // The session answered and ended; the program does not end as a success.
+    if (!unwritten.empty())
+      throw IoError(fmt::format("console: the recording was not written: {}", unwritten));
   });
 }
 

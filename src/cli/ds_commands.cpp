@@ -54,6 +54,7 @@ void add_demos(CLI::App& ds) {
   CLI::App* cmd =
       ds.add_subcommand("demos", "Generate synthetic human-like hitting demonstrations (CSV)");
   cmd->add_option("-o,--output", o->out, "Output CSV: demo,t,x,y,z,vx,vy,vz (m, s, world frame)")
+      ->check(output_file())
       ->required();
   cmd->add_option("--seed", o->seed, "Random seed")
       ->check(unsigned_integer())
@@ -86,7 +87,9 @@ void add_fit(CLI::App& ds) {
   CLI::App* cmd =
       ds.add_subcommand("fit", "Fit a hitting model (SEDS + strength GMM) to demonstrations");
   cmd->add_option("demos", o->demos, "Demonstrations CSV")->required();
-  cmd->add_option("-o,--output", o->out, "Output hitting model (JSON)")->required();
+  cmd->add_option("-o,--output", o->out, "Output hitting model (JSON)")
+      ->check(output_file())
+      ->required();
   cmd->add_option("--gaussians", o->gaussians, "Number of Gaussians K")
       ->check(CLI::Range(1, ds::kMaxSedsGaussians))
       ->capture_default_str();
@@ -242,7 +245,7 @@ void add_rollout(CLI::App& ds) {
       "--speed", o->speed, "Hitting speed at the ball [m/s] (default: the model's v(x*))");
   cmd->add_option("--modulator", o->modulator, "constant | sine")->capture_default_str();
   cmd->add_option("--dt", o->dt, "Integration step [s] (RK4)")->capture_default_str();
-  cmd->add_option("-o,--output", o->out, "Trajectory CSV: t,x,y,z,vx,vy,vz");
+  cmd->add_option("-o,--output", o->out, "Trajectory CSV: t,x,y,z,vx,vy,vz")->check(output_file());
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->callback([o, speed_opt] {
     const ds::HittingModel model = ds::read_hitting_model(resolve_model(o->model));

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "core/check.hpp"
 #include "core/csv.hpp"
@@ -66,7 +67,9 @@ void add_field_commands(CLI::App& app) {
   CLI::App* heights =
       field_cmd->add_subcommand("heights", "Sample the surface on a grid (CSV x,y,z, metres)");
   heights->add_option("field", heights_opts->field, "Shipped field name or path")->required();
-  heights->add_option("-o,--output", heights_opts->output, "Output CSV file")->required();
+  heights->add_option("-o,--output", heights_opts->output, "Output CSV file")
+      ->check(output_file())
+      ->required();
   heights->add_option("--cell", heights_opts->cell, "Grid spacing [m]")->capture_default_str();
   heights->callback([heights_opts] {
     require_in_range("--cell", heights_opts->cell, 0.002, 1.0);

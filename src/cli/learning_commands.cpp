@@ -147,7 +147,9 @@ void add_learning_commands(CLI::App& app) {
   CLI::App* train = app.add_subcommand(
       "train", "Train a hitting-parameter learner (xi -> angle, speed) on a CSV dataset");
   train->add_option("data", t->data, "Training dataset (CSV with a header)")->required();
-  train->add_option("-o,--output", t->model, "Model file to write (JSON)")->required();
+  train->add_option("-o,--output", t->model, "Model file to write (JSON)")
+      ->check(output_file())
+      ->required();
   add_learn_options(train, t->learn);
   train->callback([t] {
     const auto& inputs = t->learn.inputs;
@@ -241,7 +243,8 @@ void add_learning_commands(CLI::App& app) {
       "Train on one dataset and report MSE and NLPD per output on another (thesis Definition 6.1)");
   validate->add_option("--train", v->train, "Training dataset (CSV)")->required();
   validate->add_option("--validate", v->validate, "Validation dataset (CSV)")->required();
-  validate->add_option("-o,--output", v->model, "Also write the trained model here");
+  validate->add_option("-o,--output", v->model, "Also write the trained model here")
+      ->check(output_file());
   add_learn_options(validate, v->learn);
   validate->callback([v] {
     const auto& inputs = v->learn.inputs;

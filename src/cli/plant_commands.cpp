@@ -29,7 +29,9 @@ void add_plant_commands(CLI::App& app) {
   random->add_option("--seed", r->seed, "Seed of the draw")
       ->check(unsigned_integer())
       ->capture_default_str();
-  random->add_option("-o,--output", r->out, "Plant YAML file to write")->required();
+  random->add_option("-o,--output", r->out, "Plant YAML file to write")
+      ->check(output_file())
+      ->required();
   random->callback([r] {
     const plant::Plant p = plant::random_plant(r->seed);
     write_file_atomic(r->out,

@@ -65,8 +65,8 @@ void add_sweep(CLI::App& app) {
   cmd->add_option("--speeds", a->speeds, "V0:V1:N club speeds [m/s] (ball only: launch speeds)")
       ->required();
   cmd->add_flag("--ball-only", a->ball_only, "Launch the ball directly (no arm)");
-  cmd->add_option("-o,--output", a->out, "CSV file to write")->required();
-  cmd->add_option("--plot", a->plot, "Also draw a heat map PNG here");
+  cmd->add_option("-o,--output", a->out, "CSV file to write")->check(output_file())->required();
+  cmd->add_option("--plot", a->plot, "Also draw a heat map PNG here")->check(output_file());
   cmd->callback([a] {
     experiments::SweepOptions o;
     o.angles = parse_range("--angles", a->angles);
@@ -131,7 +131,7 @@ void add_collect(CLI::App& app) {
          "Collect at N random situations of the region (seeded by --seed) instead of its points")
       ->check(CLI::Range(0, 100000));
   cmd->add_flag("--resume", a->resume, "Continue an interrupted collection in the output file");
-  cmd->add_option("-o,--output", a->out, "Data set CSV to write")->required();
+  cmd->add_option("-o,--output", a->out, "Data set CSV to write")->check(output_file())->required();
   cmd->callback([a] {
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
                              load_plant_arg(a->sys.plant));
@@ -200,7 +200,8 @@ void add_evaluate(CLI::App& app) {
   cmd->add_flag("--no-oracle", a->no_oracle,
                 "Skip the oracle ceiling (the teacher on every situation)");
   cmd->add_flag("--json", a->json, "Print one JSON object");
-  cmd->add_option("-o,--output", a->rows, "Also write one CSV row per situation here");
+  cmd->add_option("-o,--output", a->rows, "Also write one CSV row per situation here")
+      ->check(output_file());
   cmd->add_flag("--learn", a->learn,
                 "Keep learning while playing: each putt's hindsight labels correct the model "
                 "(implies --no-oracle)");
@@ -208,8 +209,8 @@ void add_evaluate(CLI::App& app) {
                   "With --learn: residual (the model is a prior, a residual GP learns) | append "
                   "(labels join a GPR model's data)")
       ->capture_default_str();
-  cmd->add_option("--save-model", a->save_model,
-                  "With --learn: write the model as it ends up here");
+  cmd->add_option("--save-model", a->save_model, "With --learn: write the model as it ends up here")
+      ->check(output_file());
   cmd->add_option("--perception-noise", a->perception_noise,
                   "Std [m] of the perceived hole and ball positions, per axis");
   cmd->add_option("--torque-noise", a->torque_noise,

@@ -40,7 +40,7 @@ void add_ds_inputs(CLI::App* cmd, DsArgs& a) {
   cmd->add_option("--hitting-model", a.hitting_model,
                   "Hitting DS model (default: the shipped one)");
   cmd->add_option("--demos", a.demos, "Demonstrations CSV (default: data/demos/default.csv)");
-  cmd->add_option("-o,--output", a.out, "PNG to write")->required();
+  cmd->add_option("-o,--output", a.out, "PNG to write")->check(output_file())->required();
   cmd->add_option("--data-dir", a.data_dir, "Keep the exported CSV files here");
 }
 
@@ -121,7 +121,7 @@ void add_plot_field(CLI::App* plot) {
   cmd->add_option(
       "--shot", a->shots,
       "ANGLE,SPEED launch of a ball-only putt [rad, m/s]; repeat (default: 3 at the hole)");
-  cmd->add_option("-o,--output", a->out, "PNG to write")->required();
+  cmd->add_option("-o,--output", a->out, "PNG to write")->check(output_file())->required();
   cmd->add_option("--data-dir", a->data_dir, "Keep the exported CSV files here");
   cmd->callback([a] {
     const system::System sys(system::load_config(a->config, a->field));
@@ -172,7 +172,7 @@ void add_plot_model(CLI::App* plot) {
   cmd->add_option("--data", a->data, "Its training data CSV")->required();
   cmd->add_option("--validation", a->validation, "Validation data CSV (drawn as well)");
   cmd->add_option("--output", a->output, "Which output (default: the model's first)");
-  cmd->add_option("-o,--out", a->out, "PNG to write")->required();
+  cmd->add_option("-o,--out", a->out, "PNG to write")->check(output_file())->required();
   cmd->add_option("--data-dir", a->data_dir, "Keep the exported CSV files here");
   cmd->callback([a] {
     const learning::Model model = learning::load_model(system::resolve_data_path(a->model));

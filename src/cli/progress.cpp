@@ -25,6 +25,7 @@ void Progress::update(int done, const std::string& note) {
     fmt::print(stderr, "\r{} [{}{}] {}/{} {:.0f} s, ETA {:.0f} s {}\033[K", what_,
                std::string(filled, '#'), std::string(width - filled, ' '), done, total_, elapsed,
                eta, note);
+    open_ = true;
   } else {
     const int decile = static_cast<int>(f * 10.0);
     if (decile == last_decile_) return;
@@ -36,6 +37,11 @@ void Progress::update(int done, const std::string& note) {
 
 void Progress::finish() {
   if (tty_) fmt::print(stderr, "\n");
+  open_ = false;
+}
+
+Progress::~Progress() {
+  if (open_) fmt::print(stderr, "\n");
 }
 
 }  // namespace mg::cli

@@ -8,6 +8,10 @@ namespace mg::cli {
 class Progress {
  public:
   Progress(std::string what, int total);
+  /// Ends a bar left open (an error thrown mid-run): its message then starts on its own line.
+  ~Progress();
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
   /// `done` of `total` finished; `note` is shown after the bar (e.g. putts spent).
   void update(int done, const std::string& note = "");
   void finish();
@@ -17,6 +21,7 @@ class Progress {
   int total_;
   bool tty_;
   int last_decile_ = -1;
+  bool open_ = false;  ///< a bar is drawn and its line not ended
   std::chrono::steady_clock::time_point start_;
 };
 

@@ -88,7 +88,8 @@ void add_putt_command(CLI::App& app) {
   cmd->add_flag("--json", o->json, "Print one JSON object");
   cmd->add_option("--trajectory", o->trajectory,
                   "Write the ball trajectory to this CSV file (t from the launch; with the arm, "
-                  "from the club's first contact)");
+                  "from the club's first contact)")
+      ->check(output_file());
   cmd->add_option("--hitting-model", o->hitting_model,
                   "Hitting DS model file (default: data/models/hitting-default.json)");
   cmd->add_option("--config", o->config,

@@ -142,7 +142,8 @@ void add_round_command(CLI::App& app) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   cmd->add_flag("--json", a->json, "One JSON object (course, holes, putts, totals)");
-  cmd->add_option("-o,--output", a->out, "CSV of every stroke (with --compare: the Markdown)");
+  cmd->add_option("-o,--output", a->out, "CSV of every stroke (with --compare: the Markdown)")
+      ->check(output_file());
   cmd->add_option("--config", a->system.config, "Module config YAML");
   cmd->add_option("--hitting-model", a->system.hitting_model,
                   "Hitting DS model file (default: the shipped one)");

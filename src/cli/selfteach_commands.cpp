@@ -56,11 +56,12 @@ void add_self_teach(CLI::App& app) {
                   "(ball, hole) situations and learns the region's inputs");
   cmd->add_option("--strategy", a->strategy,
                   "min-speed | min-angle (default: the field's situations.strategy)");
-  cmd->add_option("--log", a->log, "Also write one CSV row per putt here");
+  cmd->add_option("--log", a->log, "Also write one CSV row per putt here")->check(output_file());
   cmd->add_option("--arrival-speed", a->arrival,
                   "Ball speed [m/s] to reach the hole with (default: the strategy's)")
       ->check(finite_number(0.0, 2.0));
   cmd->add_option("-o,--output", a->out, "Learner model file to write (as minigolf train)")
+      ->check(output_file())
       ->required();
   cmd->add_option(
       "--prior", a->prior,
@@ -152,7 +153,7 @@ void add_curves(CLI::App& app) {
   cmd->add_option("--balls", a->balls,
                   "Where the ball lies (as collect --balls; learners self-teach, adapt and "
                   "teacher-gpr)");
-  cmd->add_option("-o,--output", a->out, "CSV to write")->required();
+  cmd->add_option("-o,--output", a->out, "CSV to write")->check(output_file())->required();
   cmd->callback([a] {
     const experiments::CurveLearner learner = experiments::parse_curve_learner(a->learner);
     if (experiments::needs_prior(learner) != !a->prior.empty())

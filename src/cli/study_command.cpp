@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
@@ -137,6 +138,11 @@ void add_study_commands(CLI::App& app) {
           fmt::format("--speed: expected {}..{} m/s (club speed, safe envelope), got {}",
                       config.speed_min, config.speed_max, o->speed));
     opt.validate();
+    // The folder and its files, after the inputs, before the hits.
+    ensure_output_dir(o->out);
+    for (const char* file : {"launch_error.csv", "launch_error.md", "launch_error.png"})
+      if (o->plot || std::string_view(file) != "launch_error.png")
+        check_output_file(std::filesystem::path(o->out) / file);
 
     opt.hole = sys.field().hole.position;
 
@@ -158,9 +164,6 @@ void add_study_commands(CLI::App& app) {
         });
 
     const std::filesystem::path dir(o->out);
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throw IoError(fmt::format("--out: cannot create '{}': {}", dir.string(), ec.message()));
     const std::string markdown = experiments::launch_study_markdown(r);
     write_file_atomic(dir / "launch_error.csv", experiments::launch_study_csv(r));
     write_file_atomic(dir / "launch_error.md", markdown);

@@ -32,6 +32,17 @@ bool to_number(std::string_view word, double& out) {
 
 ConsoleParse error(std::string message) { return {EmptyLine{}, std::move(message)}; }
 
+/// A word of the user's line quoted in an answer: one line (control characters as '?') and at
+/// most kShownWord characters (a 100,000-character word is not echoed whole).
+constexpr std::size_t kShownWord = 40;
+std::string shown_word(std::string_view word) {
+  std::string out;
+  for (unsigned char c : word.substr(0, kShownWord))
+    out += c < 0x20 || c == 0x7f ? '?' : static_cast<char>(c);
+  if (word.size() > kShownWord) out += "... (" + std::to_string(word.size()) + " characters)";
+  return out;
+}
+
 }  // namespace
 
 ConsoleParse parse_console_line(std::string_view line) {
@@ -79,7 +90,7 @@ ConsoleParse parse_console_line(std::string_view line) {
     if (arity(2) && w[1] == "on") return {RecordCmd{true, std::string(w[2])}, {}};
     return usage("record on FILE | record off");
   }
-  return error("unknown command '" + std::string(verb) + "' (type help)");
+  return error("unknown command '" + shown_word(verb) + "' (type help)");
 }
 
 std::string_view console_help() {

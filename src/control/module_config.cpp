@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "field/map_reader.hpp"
 
 namespace mg::control {
 
@@ -274,13 +275,8 @@ void read_keys(ModuleConfig& c, const YAML::Node& map, const std::string& part,
 
 ModuleConfig parse_module_config(const std::string& yaml_text, const std::string& source) {
   ModuleConfig c;
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}: not valid YAML: {}", source, e.what()));
-  }
-  if (root.IsNull()) return c;
+  const YAML::Node root = field::load_yaml(yaml_text, source);
+  if (!root || root.IsNull()) return c;
   if (!root.IsMap()) throw InputError(fmt::format("{}: expected a YAML mapping", source));
   read_keys(c, root, "", source);
   c.validate();

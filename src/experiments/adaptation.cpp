@@ -10,11 +10,13 @@
 #include "core/rng.hpp"
 #include "experiments/evaluate.hpp"
 #include "system/distributed.hpp"
+#include "system/parallel.hpp"
 #include "system/system.hpp"
 
 namespace mg::experiments {
 
 void AdaptationOptions::validate() const {
+  system::check_threads(threads);
   if (given.empty() && (plants < 1 || plants > 1000))
     throw InputError(fmt::format("adaptation: plants: expected 1..1000, got {}", plants));
   if (situations < 1 || situations > 100000)
@@ -53,6 +55,13 @@ std::vector<PlantAdaptation> adaptation_study(const control::ModuleConfig& confi
   if (plants.empty())
     for (int k = 0; k < options.plants; ++k)
       plants.push_back(plant::random_plant(options.plant_seed + static_cast<std::uint64_t>(k)));
+  // Every plant's holes before the first plant's putts (a plant that moves a test hole off the
+  // lane was found after the other plants had run).
+  const auto tests = region.sample_situations(belief, options.situations, options.test_seed);
+  std::vector<std::array<double, 2>> holes = region.corners();
+  for (const auto& t : tests) holes.push_back(t.hole);
+  for (std::size_t k = 0; k < plants.size(); ++k)
+    system::check_real_holes(belief, plants[k], holes, fmt::format("adaptation: plant {}", k));
   const system::System nominal(config, belief);
   // Per plant: [oracle_found, sunk at each checkpoint...] (system/wire.hpp sends int vectors).
   std::vector<std::vector<int>> results(plants.size());

@@ -240,6 +240,7 @@ CollectResult collect(const system::System& system, const std::vector<field::Sit
   for (const auto& s : situations) {
     field::check_hole_position(system.field(), s.hole);
     field::check_ball_position(system.field(), s.ball, "collect: ball");
+    system::check_real_holes(system.field(), system.plant(), {s.hole}, "collect");
   }
   const bool with_ball = balls_off_tee(situations, system.field());
   const std::string settings = collect_settings(system, situations, options);

@@ -121,6 +121,7 @@ game::HitModel round_hit_model(std::shared_ptr<const learning::Model> model,
 }
 
 void EvaluateOptions::validate() const {
+  system::check_threads(threads);
   if (situations < 1 || situations > 100000)
     throw InputError(fmt::format("--situations: expected 1..100000, got {}", situations));
   if (!(perception_noise >= 0.0 && perception_noise <= 0.1))
@@ -129,6 +130,18 @@ void EvaluateOptions::validate() const {
     throw InputError(
         fmt::format("torque noise: expected 0..0.1 of the limits, got {}", torque_noise));
 }
+
+namespace {
+
+/// The plant's real holes of every test situation, before the first putt (not after others ran).
+void check_plant_holes(const system::System& system,
+                       const std::vector<field::Situation>& situations) {
+  std::vector<std::array<double, 2>> holes;
+  for (const auto& s : situations) holes.push_back(s.hole);
+  system::check_real_holes(system.field(), system.plant(), holes, "evaluate");
+}
+
+}  // namespace
 
 Evaluation evaluate_model(const system::System& system, const learning::Model& model,
                           const field::Situations& region, const EvaluateOptions& options,
@@ -148,6 +161,7 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
   options.validate();
   const auto& field = system.field();
   const auto situations = region.sample_situations(field, options.situations, options.seed);
+  check_plant_holes(system, situations);
   std::vector<field::Situation> perceived = situations;
   if (options.perception_noise > 0.0)
     for (std::size_t i = 0; i < situations.size(); ++i) {
@@ -231,6 +245,7 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
   const double hole_radius = 0.5 * field.hole.diameter;
   const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
   const auto situations = region.sample_situations(field, options.situations, options.seed);
+  check_plant_holes(system, situations);
   selfteach::Planner planner(system, region, rules.arrival_speed, options.seed,
                              std::make_shared<const learning::Model>(model));
 
@@ -309,6 +324,7 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
   const double hole_radius = 0.5 * field.hole.diameter;
   const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
   const auto situations = region.sample_situations(field, options.situations, options.seed);
+  check_plant_holes(system, situations);
 
   LearningEvaluation out;
   out.learned = model;

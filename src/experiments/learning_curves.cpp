@@ -49,6 +49,7 @@ bool needs_prior(CurveLearner l) {
 }
 
 void CurveOptions::validate() const {
+  system::check_threads(threads);
   if (checkpoints.empty()) throw InputError("learning curves: no checkpoints");
   for (int c : checkpoints)
     if (c < 0 || c > 100000)

@@ -19,6 +19,7 @@
 #include "experiments/reproduce_steps.hpp"
 #include "experiments/round_study.hpp"
 #include "system/distributed.hpp"
+#include "system/parallel.hpp"
 
 namespace mg::experiments {
 namespace {
@@ -157,19 +158,22 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
   run.thesis = load_thesis();
   run.say = [&](const std::string& s) { log(fmt::format("[{:6.1f} s] {}", elapsed(), s)); };
   run.datasets = opt.datasets.empty() ? data_dir() / "datasets" : opt.datasets;
+  // Every input and output is checked before the first step prints or runs.
   check_inputs(opt, run.datasets);
-  std::error_code ec;
-  fs::create_directories(opt.out / "csv", ec);
-  fs::create_directories(opt.out / "figures", ec);
-  if (ec) throw IoError(fmt::format("-o: cannot create '{}': {}", opt.out.string(), ec.message()));
-  run.n_test = opt.quick ? 30 : 200;
-  run.curve_seeds = opt.quick ? 3 : 10;
-  run.curve_situations = 30;
-  run.arctan_splits = opt.quick ? 100 : 1000;
+  system::check_threads(opt.threads);
   run.run_plant = opt.plant.empty() ? plant::Plant{} : plant::load_plant(opt.plant);
   run.real_plant = plant::load_plant(opt.real_robot_plant.empty()
                                          ? (data_dir() / "plants" / "real-wam.yaml").string()
                                          : opt.real_robot_plant);
+  if (!opt.config.empty())
+    for (const auto& name : opt.fields) (void)system::load_config(opt.config, name);
+  for (const fs::path& dir : {opt.out, opt.out / "csv", opt.out / "figures"})
+    ensure_output_dir(dir);
+  for (const char* file : {"report.md", "run.json"}) check_output_file(opt.out / file);
+  run.n_test = opt.quick ? 30 : 200;
+  run.curve_seeds = opt.quick ? 3 : 10;
+  run.curve_situations = 30;
+  run.arctan_splits = opt.quick ? 100 : 1000;
   run.plot = [&opt](const std::string& args, const std::string& png) {
     if (!opt.plots || !system::is_root_process()) return;  // one process draws (MPI)
     run_plot_script(args, png);

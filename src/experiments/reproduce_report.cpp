@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "experiments/reproduce_steps.hpp"
+#include "field/map_reader.hpp"
 #include "system/distributed.hpp"
 
 namespace mg::experiments::reproduce_steps {
@@ -54,11 +55,7 @@ double Thesis::success(const std::string& field, const std::string& method,
 
 Thesis load_thesis() {
   const std::filesystem::path p = data_dir() / "reference" / "thesis-results.yaml";
-  try {
-    return Thesis{YAML::Load(read_text_file(p))};
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}: malformed YAML: {}", p.string(), e.what()));
-  }
+  return Thesis{field::load_yaml(read_text_file(p), p.string())};
 }
 
 std::string report_markdown(const Run& run, const Tables& t, const std::string& rounds_md,

@@ -16,6 +16,7 @@ std::vector<double> linspace(double lo, double hi, int n) {
 std::vector<SweepCell> run_sweep(const system::System& system, const SweepOptions& options,
                                  const std::function<void(int, int)>& progress) {
   field::check_hole_position(system.field(), options.hole);
+  system::check_real_holes(system.field(), system.plant(), {options.hole}, "sweep");
   const int na = static_cast<int>(options.angles.size()),
             ns = static_cast<int>(options.speeds.size());
   std::vector<SweepCell> cells(static_cast<std::size_t>(na * ns));

@@ -290,12 +290,7 @@ void check_hole_position(const Field& field, std::array<double, 2> p) {
 
 Field parse_field(std::string_view yaml_text, const std::string& source,
                   const std::filesystem::path& base_dir) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(yaml_text));
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}: malformed YAML: {}", source, e.what()));
-  }
+  const YAML::Node root = load_yaml(yaml_text, source);
   if (!root || root.IsNull()) throw InputError(fmt::format("{}: empty field file", source));
   Field f;
   f.source = source;
@@ -304,7 +299,7 @@ Field parse_field(std::string_view yaml_text, const std::string& source,
     const double version = r.number("format_version");
     if (version != kFormatVersion)
       r.fail("format_version", fmt::format("expected {}, got {}", kFormatVersion, version));
-    f.name = r.text("name", std::filesystem::path(source).stem().string());
+    f.name = r.name("name", std::filesystem::path(source).stem().string());
     f.description = r.text("description", "");
     {
       MapReader lane = r.child("lane");

@@ -2,18 +2,134 @@
 /// Typed reading of YAML maps for the project's data files (fields, plants): every error names
 /// the file and the key path, and keys that were not asked about are an error (a typo must not
 /// fall back to a default silently). Internal to the parsers (links yaml-cpp).
+///
+/// `load_yaml` is the one way the project reads YAML text (fields, courses, plants, module
+/// configs, the thesis reference): exactly one document, no key twice in a mapping.
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <set>
+#include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fmt/format.h>
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
 
 namespace mg::field {
+
+/// Nodes a YAML data file may have at most (aliases can make a short text a huge tree), and how
+/// deep its mappings and lists may nest (an alias of an ancestor makes an endless one).
+inline constexpr std::size_t kMaxYamlNodes = 1000000;
+inline constexpr int kMaxYamlDepth = 64;
+
+namespace detail {
+
+/// The key path of `keys` for a message ("holes[0].par"), shortened when long.
+inline std::string yaml_path(const std::vector<std::string>& keys) {
+  std::string path;
+  for (const auto& k : keys) path += k.front() == '[' || path.empty() ? k : "." + k;
+  return path.size() > 200 ? path.substr(0, 200) + "..." : path;
+}
+
+/// Throws InputError naming `source` and the key path of the first key given twice in one
+/// mapping (yaml-cpp keeps both; `node[key]` finds the first, iteration sees both). `keys`: the
+/// path so far; `budget`: the nodes it may still visit.
+inline void check_unique_keys(const YAML::Node& node, const std::string& source,
+                              std::vector<std::string>& keys, std::size_t& budget) {
+  if (budget == 0)
+    throw InputError(fmt::format("{}: more than {} YAML nodes (expected a small data file)", source,
+                                 kMaxYamlNodes));
+  --budget;
+  if (static_cast<int>(keys.size()) > kMaxYamlDepth)
+    throw InputError(
+        fmt::format("{}: {}: nested deeper than {} levels (expected a small data "
+                    "file)",
+                    source, yaml_path(keys), kMaxYamlDepth));
+  if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      keys.push_back(fmt::format("[{}]", i));
+      check_unique_keys(node[i], source, keys, budget);
+      keys.pop_back();
+    }
+  } else if (node.IsMap()) {
+    std::set<std::string> seen;
+    for (const auto& kv : node) {
+      if (!kv.first.IsScalar()) continue;  // a complex key: the readers refuse it as unknown
+      const std::string& key = kv.first.Scalar();
+      keys.push_back(key.empty() ? "''" : key);
+      if (!seen.insert(key).second)
+        throw InputError(fmt::format("{}: {}: duplicate key (a key may appear once per mapping)",
+                                     source, yaml_path(keys)));
+      check_unique_keys(kv.second, source, keys, budget);
+      keys.pop_back();
+    }
+  }
+}
+
+/// Where each document of a YAML text starts (an event handler that ignores the rest);
+/// `stalled` once a document starts where the last one did (the parser makes no progress).
+class DocumentStarts : public YAML::EventHandler {
+ public:
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    stalled = stalled || (started && mark.pos <= pos);
+    started = true;
+    pos = mark.pos, line = mark.line, column = mark.column;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+
+  bool started = false, stalled = false;
+  int pos = 0, line = 0, column = 0;
+};
+
+}  // namespace detail
+
+/// Parses YAML text from `source` (named in every message): one document (a second `---`
+/// document is an error, not ignored), no key twice in a mapping. An empty text is a null node.
+/// Throws InputError "SOURCE: malformed YAML: ..." / "SOURCE: a second YAML document ..." /
+/// "SOURCE: KEY.PATH: duplicate key ...".
+inline YAML::Node load_yaml(std::string_view text, const std::string& source) {
+  const std::string yaml(text);
+  YAML::Node root;
+  try {
+    // Count the documents with the event parser (YAML::LoadAll never returns on "," : its parser
+    // starts an empty document at the same place again and again).
+    std::stringstream in(yaml);
+    YAML::Parser parser(in);
+    detail::DocumentStarts starts;
+    int documents = 0;
+    while (documents < 2 && !starts.stalled && parser.HandleNextDocument(starts)) ++documents;
+    if (starts.stalled)
+      throw InputError(fmt::format("{}: malformed YAML: nothing readable at line {}, column {}",
+                                   source, starts.line + 1, starts.column + 1));
+    if (documents > 1)
+      throw InputError(
+          fmt::format("{}: a second YAML document at line {} (expected one; it would be ignored)",
+                      source, starts.line + 1));
+    root = YAML::Load(yaml);
+  } catch (const YAML::Exception& e) {
+    throw InputError(fmt::format("{}: malformed YAML: {}", source, e.what()));
+  }
+  if (!root) return root;
+  std::size_t budget = kMaxYamlNodes;
+  std::vector<std::string> keys;
+  detail::check_unique_keys(root, source, keys, budget);
+  return root;
+}
 
 /// Reads typed values from a YAML map, naming `source` and the key path in every error, and
 /// rejecting keys it was not asked about (typos must not silently fall back to defaults).
@@ -41,6 +157,17 @@ class MapReader {
     const YAML::Node n = node_[key];
     if (!n.IsScalar()) fail(full(key), "expected text");
     return n.as<std::string>();
+  }
+  /// A name shown on one line (progress, reports, CSV): text without control characters (a
+  /// newline would split the line); `fallback` when absent, checked alike.
+  std::string name(const std::string& key, const std::string& fallback) {
+    const std::string v = text(key, fallback);
+    for (unsigned char c : v)
+      if (c < 0x20 || c == 0x7f)
+        fail(full(key), fmt::format("expected a name without control characters, got one with "
+                                    "character {:#04x}",
+                                    c));
+    return v;
   }
   template <std::size_t N>
   std::array<double, N> numbers(const std::string& key) {

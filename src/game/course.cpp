@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "field/map_reader.hpp"
+#include "game/lane_region.hpp"
 
 namespace mg::game {
 namespace {
@@ -27,19 +28,14 @@ std::string field_reference(const std::string& name, const std::filesystem::path
 
 Course parse_course(std::string_view yaml_text, const std::string& source,
                     const std::filesystem::path& base_dir) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(yaml_text));
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}: not valid YAML: {}", source, e.msg));
-  }
+  const YAML::Node root = field::load_yaml(yaml_text, source);
   field::MapReader r(root, source, "");
   const int version = r.integer("format_version");
   if (version != 1)
     throw InputError(fmt::format("{}: format_version: expected 1, got {}", source, version));
   Course c;
   c.source = source;
-  c.name = r.text("name", std::filesystem::path(source).stem().string());
+  c.name = r.name("name", std::filesystem::path(source).stem().string());
   if (c.name.empty() || c.name.size() > 200)
     throw InputError(fmt::format("{}: name: expected 1..200 characters", source));
   c.max_strokes = r.has("max_strokes") ? r.integer("max_strokes") : c.max_strokes;
@@ -75,6 +71,14 @@ Course parse_course(std::string_view yaml_text, const std::string& source,
                      hole.field.tee[1] - hole.field.hole.position[1]) <
           0.5 * hole.field.hole.diameter + hole.field.ball.radius)
         throw InputError("the tee lies in the hole");
+      // The round's own flood fill: a hole walled off from the tee would be played as strokes
+      // and penalties until max_strokes.
+      if (!LaneRegion(hole.field, hole.field.hole.position).contains(hole.field.tee))
+        throw InputError(fmt::format(
+            "the hole ({}, {}) cannot be reached from the tee ({}, {}): no path on the lane "
+            "between them clears the walls",
+            hole.field.hole.position[0], hole.field.hole.position[1], hole.field.tee[0],
+            hole.field.tee[1]));
     } catch (const InputError& e) {
       // The field's message names its own file and key: say which course entry set them.
       throw InputError(fmt::format("{}: {} (tee/hole): {}", source, key, e.what()));

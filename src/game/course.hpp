@@ -10,8 +10,9 @@
 ///     - {field: flat, tee: [0.2, -0.1], hole: [2.3, 0.3], par: 2}
 ///     - {field: path/to/field.yaml, par: 3}     # the field's own tee and hole
 /// Validated once, on load: every field is loaded and checked with its tee and hole (a tee off the
-/// lane or in an obstacle, a hole inside a block, par < 1 ... are one-line errors naming the
-/// course file and the key).
+/// lane or in an obstacle, a hole inside a block, a hole walled off from the tee (the round's
+/// LaneRegion), par < 1, a key given twice, a name with a control character ... are one-line
+/// errors naming the course file and the key).
 #include <array>
 #include <filesystem>
 #include <string>

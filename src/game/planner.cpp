@@ -120,6 +120,7 @@ std::pair<double, double> score(const field::Field& field, const Block& b, std::
 }  // namespace
 
 void PlannerOptions::validate() const {
+  system::check_threads(threads);
   require_in_range("planner.speed_min", speed_min, 0.05, 10.0);
   require_in_range("planner.speed_max", speed_max, speed_min, 10.0);
   if (speeds < 2 || speeds > 200) throw InputError("planner.speeds: expected 2..200 launch speeds");

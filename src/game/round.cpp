@@ -99,6 +99,10 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
                        const plant::Plant& plant, const RoundOptions& options, ImaginedCache* cache,
                        const std::function<void(int, const StrokeRecord&)>& on_stroke) {
   options.validate();
+  // Where the plant puts every hole, before the first stroke (not at hole 7 after six were played).
+  for (std::size_t h = 0; h < course.holes.size(); ++h)
+    system::check_real_holes(course.holes[h].field, plant, {course.holes[h].field.hole.position},
+                             fmt::format("{}: hole {}", course.name, h + 1));
   RoundResult result;
   result.course = course.name;
   result.player = options.player;
@@ -110,6 +114,7 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
     w.data = std::make_unique<system::SystemData>(*w.truth);
     const field::Field& field = w.belief->field();
     const auto hole = field.hole.position;
+    const auto cup = system::real_hole(*w.truth, hole);  // where the ball really drops
     const LaneRegion region(field, hole);
     const control::ControllerConfig& mc = w.belief->module().config();
     const double club_min = mc.speed_min, club_max = std::min(mc.speed_max, mc.arm_speed_cap);
@@ -283,13 +288,14 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
             ball = replace_ball(field, ball);  // resting against a border or wall: 1 cm off it
           }
         }
-        // A ball resting over the cup's rim but not in: nudge it off the rim onto the lane.
-        const double gap = std::hypot(ball[0] - hole[0], ball[1] - hole[1]);
+        // A ball resting over the cup's rim but not in: nudge it off the rim onto the lane. The
+        // cup is where the world has it (the plant's hole offset), not where the robot sees it.
+        const double gap = std::hypot(ball[0] - cup[0], ball[1] - cup[1]);
         const double need = 0.5 * field.hole.diameter + field.ball.radius + 1e-3;
         if (gap < need) {
-          const double ux = gap > 1e-9 ? (ball[0] - hole[0]) / gap : 1.0;
-          const double uy = gap > 1e-9 ? (ball[1] - hole[1]) / gap : 0.0;
-          ball = replace_ball(field, {hole[0] + ux * need, hole[1] + uy * need});
+          const double ux = gap > 1e-9 ? (ball[0] - cup[0]) / gap : 1.0;
+          const double uy = gap > 1e-9 ? (ball[1] - cup[1]) / gap : 0.0;
+          ball = replace_ball(field, {cup[0] + ux * need, cup[1] + uy * need});
         }
       }
       hr.putts.push_back(s);

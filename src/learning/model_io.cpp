@@ -47,6 +47,10 @@ std::vector<std::string> names(const nlohmann::json& j, const char* key, std::st
     if (!e.is_string() || e.get<std::string>().empty())
       throw InputError(
           fmt::format("{}.{}: expected non-empty strings, got {}", where, key, e.dump()));
+    // A name twice would feed one column to both places (every query then predicts alike).
+    if (std::find(out.begin(), out.end(), e.get<std::string>()) != out.end())
+      throw InputError(fmt::format("{}.{}: '{}' appears twice (expected distinct names)", where,
+                                   key, e.get<std::string>()));
     out.push_back(e.get<std::string>());
   }
   return out;

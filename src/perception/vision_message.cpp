@@ -1,8 +1,11 @@
 #include "perception/vision_message.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include <nlohmann/json.hpp>
+
+#include "core/json_io.hpp"
 
 namespace mg::perception {
 namespace {
@@ -41,13 +44,16 @@ VisionParse parse_vision_message(std::string_view datagram, const VisionLimits& 
     r.error = VisionError::kTooLong;
     return r;
   }
-  // Parse without exceptions: a discarded value marks malformed JSON. (JSON has no NaN or
-  // infinity literals, so those arrive as malformed text or as huge numbers caught below.)
-  const nlohmann::json j = nlohmann::json::parse(datagram, nullptr, false);
-  if (j.is_discarded() || !j.is_object()) {
+  // Parse without exceptions: malformed JSON, a key given twice ("format" twice) and a NUL byte
+  // (nlohmann would stop there: a valid message followed by "\0garbage") are malformed. (JSON
+  // has no NaN or infinity literals, so those arrive as malformed text or as huge numbers caught
+  // below.)
+  const std::optional<nlohmann::json> parsed = try_parse_json(datagram);
+  if (!parsed || !parsed->is_object()) {
     r.error = VisionError::kMalformed;
     return r;
   }
+  const nlohmann::json& j = *parsed;
   const auto format = j.find("format");
   if (format == j.end() || !format->is_string() || format->get<std::string>() != kVisionFormat) {
     r.error = VisionError::kWrongFormat;

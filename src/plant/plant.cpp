@@ -88,23 +88,22 @@ Plant parse_plant(std::string_view yaml_text, const std::string& source) {
   if (yaml_text.size() > kMaxPlantBytes)
     throw InputError(fmt::format("{}: {} bytes: a plant file is at most {} bytes", source,
                                  yaml_text.size(), kMaxPlantBytes));
-  YAML::Node root;
-  try {
-    root = YAML::Load(std::string(yaml_text));
-  } catch (const YAML::Exception& e) {
-    throw InputError(fmt::format("{}: malformed YAML: {}", source, e.what()));
-  }
+  const YAML::Node root = field::load_yaml(yaml_text, source);
   Plant p;
   p.source = source;
   p.hash = content_hash(yaml_text);
-  if (!root || root.IsNull()) return p;  // an empty file: the identity
+  // Like fields and courses, a plant names its format: an empty file or one without the version
+  // is not taken for the identity (a truncated or wrong file would play the robot's model).
+  if (!root || root.IsNull())
+    throw InputError(
+        fmt::format("{}: empty plant file (expected format_version: {} and the keys that differ "
+                    "from the robot's model)",
+                    source, kPlantFormatVersion));
   try {
     field::MapReader r(root, source, "");
-    if (r.has("format_version")) {
-      const double version = r.number("format_version");
-      if (version != kPlantFormatVersion)
-        r.fail("format_version", fmt::format("expected {}, got {}", kPlantFormatVersion, version));
-    }
+    const double version = r.number("format_version");
+    if (version != kPlantFormatVersion)
+      r.fail("format_version", fmt::format("expected {}, got {}", kPlantFormatVersion, version));
     if (r.has("field")) {
       field::MapReader f = r.child("field");
       auto& t = p.field;
@@ -142,7 +141,7 @@ Plant parse_plant(std::string_view yaml_text, const std::string& source) {
   return p;
 }
 
-Plant load_plant(const std::filesystem::path& path) {
+std::string read_plant_file(const std::filesystem::path& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(
@@ -151,7 +150,11 @@ Plant load_plant(const std::filesystem::path& path) {
   if (std::filesystem::file_size(path, ec) > kMaxPlantBytes)
     throw InputError(fmt::format("plant: '{}': larger than {} bytes, not a plant file",
                                  path.string(), kMaxPlantBytes));
-  return parse_plant(read_text_file(path), path.string());
+  return read_text_file(path);
+}
+
+Plant load_plant(const std::filesystem::path& path) {
+  return parse_plant(read_plant_file(path), path.string());
 }
 
 double true_rolling_resistance(const field::Field& belief, const Plant& plant) {

@@ -8,7 +8,8 @@
 /// the world builder (system::System) and the oracle read a plant; an empty plant is the
 /// identity (the same bits as no plant).
 ///
-/// File (YAML, `format_version: 1`, every other key optional, unknown keys are an error):
+/// File (YAML, `format_version: 1` required, every other key optional, unknown keys and keys
+/// given twice are an error; an empty file is an error, not the identity):
 ///   field:      rolling_resistance | rolling_resistance_scale, sliding_friction |
 ///               sliding_friction_scale, extra_slope [dz/dx, dz/dy], hole_offset [m, m]
 ///   arm:        launch_angle_bias [rad], club_speed_scale, club_restitution_scale,
@@ -69,6 +70,8 @@ struct Plant {
 
 /// Parses plant YAML text; `source` names it in errors. Throws InputError.
 Plant parse_plant(std::string_view yaml_text, const std::string& source);
+/// The bytes of a plant file (a regular file of at most 1 MiB). Throws InputError/IoError.
+std::string read_plant_file(const std::filesystem::path& path);
 /// Reads and parses a plant file (source and hash set). Throws InputError/IoError.
 Plant load_plant(const std::filesystem::path& path);
 

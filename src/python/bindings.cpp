@@ -10,12 +10,19 @@
 
 #include "core/error.hpp"
 #include "python/bindings.hpp"
+#include "sim/mujoco_errors.hpp"
 #include "system/distributed.hpp"
 
 namespace py = pybind11;
 using namespace mg;
 
 PYBIND11_MODULE(_minigolf, m) {
+  // MuJoCo's fatal errors end the process with one line on stderr, never with MuJoCo's default
+  // wait for Enter on standard input (a handler cannot raise through MuJoCo's C frames; the
+  // bindings check what they pass to MuJoCo so that none is reached). Its warnings go to stderr
+  // instead of MUJOCO_LOG.TXT in the working folder and standard output.
+  sim::exit_on_mujoco_error();
+  sim::print_mujoco_warnings();
   m.doc() =
       "A simulated Barrett WAM that learns to putt: fields, worlds, putts, learners, DS rollouts, "
       "teacher, evaluation. Units: m, s, rad, m/s.";

@@ -84,6 +84,14 @@ struct PySystemData {
   std::mutex busy;
 };
 
+/// Throws unless `d` (none: a fresh one is made) is a SystemData of `s`: another System's
+/// mjData's have other sizes, and MuJoCo would copy between them out of bounds.
+inline void check_owner(const system::System& s, const PySystemData* d) {
+  if (d != nullptr && d->system != &s)
+    throw InputError(
+        "data: this SystemData belongs to another System (use this System's make_data)");
+}
+
 class Lease {
  public:
   explicit Lease(PySystemData* d) : d_(d) {

@@ -12,6 +12,7 @@
 #include "game/report.hpp"
 #include "plant/plant.hpp"
 #include "python/bindings.hpp"
+#include "system/parallel.hpp"
 
 namespace mg::python {
 
@@ -22,6 +23,7 @@ void bind_game(py::module_& m) {
       [](const std::string& course, const std::string& player, std::uint64_t seed, int budget,
          const std::string& plant, const std::string& config, const std::string& hitting_model,
          int threads, const std::map<std::string, std::string>& models) {
+        system::check_threads(threads);
         std::string text;
         {
           py::gil_scoped_release release;

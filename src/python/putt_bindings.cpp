@@ -31,6 +31,7 @@ py::array_t<double> trajectory(const sim::PuttOutcome& o) {
 
 PuttResult putt(const system::System& sys, PySystemData* pdata, const system::PuttSpec& spec) {
   PuttResult r{spec, {}, {}};
+  check_owner(sys, pdata);
   Lease lease(pdata);
   std::optional<system::SystemData> local;
   {

@@ -21,6 +21,7 @@
 #include "python/bindings.hpp"
 #include "sim/putt.hpp"
 #include "system/distributed.hpp"
+#include "system/parallel.hpp"
 #include "teacher/teacher.hpp"
 
 namespace mg::python {
@@ -48,6 +49,19 @@ const experiments::CollectOptions kCollectDefaults{};
 }  // namespace
 
 void bind_system(py::module_& m) {
+  m.def(
+      "read_plant_file",
+      [](const std::string& path) {
+        std::string text;
+        {
+          py::gil_scoped_release release;
+          text = plant::read_plant_file(path);
+        }
+        return py::bytes(text);
+      },
+      py::arg("path"),
+      "The bytes of a plant file (checked as System(plant=) reads it), for System(plant_text=): "
+      "what a pickled PuttEnv keeps, so a clone plays the same world");
   py::class_<PySystemData>(
       m, "SystemData",
       "Per-thread mutable state for putts on one System (its mjData's). One per thread.")
@@ -124,19 +138,28 @@ void bind_system(py::module_& m) {
       "A ready minigolf system: the field's world with the WAM and club, the ball-only "
       "world, the hitting model and the control module. Immutable; shared by threads.")
       .def(py::init([](const std::string& field, const std::string& config,
-                       const std::string& hitting_model, const std::string& plant) {
+                       const std::string& hitting_model, const std::string& plant,
+                       std::optional<py::bytes> plant_text) {
+             if (plant_text && plant.empty())
+               throw InputError("plant_text: needs plant (the name its errors and hash carry)");
+             // Held as a std::string before the GIL is released.
+             const std::optional<std::string> text =
+                 plant_text ? std::optional<std::string>(std::string(*plant_text)) : std::nullopt;
              py::gil_scoped_release release;
+             plant::Plant p;
+             if (text)
+               p = plant::parse_plant(*text, plant);
+             else if (!plant.empty())
+               p = plant::load_plant(plant);
              return std::make_unique<system::System>(
-                 system::load_config(config, field, hitting_model),
-                 plant.empty() ? plant::Plant{} : plant::load_plant(plant));
+                 system::load_config(config, field, hitting_model), std::move(p));
            }),
            py::arg("field") = "flat", py::arg("config") = "", py::arg("hitting_model") = "",
-           py::arg("plant") = "",
+           py::arg("plant") = "", py::arg("plant_text") = py::none(),
            "field: shipped name or path; config: module YAML (empty: defaults); hitting_model: DS "
-           "model file "
-           "(empty: the configured default); plant: plant file, the world as it really is "
-           "(docs/reality.md; "
-           "empty: the robot's model)")
+           "model file (empty: the configured default); plant: plant file, the world as it "
+           "really is (docs/reality.md; empty: the robot's model); plant_text: the plant file's "
+           "bytes, read earlier (read_plant_file), parsed instead of reading `plant` again")
       .def_property_readonly(
           "plant",
           [](const system::System& s) -> py::object {
@@ -210,6 +233,7 @@ void bind_system(py::module_& m) {
              PySystemData* data, std::optional<std::array<double, 2>> ball) {
             const auto t = teacher_options(s, strategy, max_full_putts, max_ball_putts,
                                            margin_angle, margin_speed);
+            check_owner(s, data);
             Lease lease(data);
             std::optional<system::SystemData> local;
             const field::Situation situation{ball.value_or(s.field().tee), hole};
@@ -230,6 +254,7 @@ void bind_system(py::module_& m) {
           "sweep",
           [](const system::System& s, std::vector<double> angles, std::vector<double> speeds,
              std::optional<std::array<double, 2>> hole, bool ball_only, int threads) {
+            system::check_threads(threads);
             experiments::SweepOptions o;
             o.angles = std::move(angles);
             o.speeds = std::move(speeds);
@@ -274,6 +299,7 @@ void bind_system(py::module_& m) {
           [](const system::System& s, const std::string& out, const std::string& situations,
              const std::string& strategy, int max_full_putts, std::uint64_t seed, int threads,
              bool resume, const std::string& balls) {
+            system::check_threads(threads);
             const field::Situations region = field::region_from_spec(s.field(), situations, balls);
             experiments::CollectOptions o;
             o.teacher = teacher::options_for(region, strategy);
@@ -300,6 +326,7 @@ void bind_system(py::module_& m) {
           [](const system::System& s, const learning::Model& model, int situations,
              std::uint64_t seed, int threads, bool oracle, const std::string& region_spec,
              const std::string& balls_spec) {
+            system::check_threads(threads);
             experiments::check_playable_model(model, "model", &s);
             experiments::EvaluateOptions o;
             o.situations = situations;

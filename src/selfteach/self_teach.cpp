@@ -18,6 +18,7 @@
 namespace mg::selfteach {
 
 void SelfTeachOptions::validate() const {
+  system::check_threads(threads);
   if (budget < 1 || budget > 100000)
     throw InputError(
         fmt::format("self-teach: budget: expected 1..100000 full-system putts, got {}", budget));
@@ -182,6 +183,7 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
                            const std::function<void(int, int)>& progress) {
   options.validate();
   region.validate(system.field(), "self-teach region");
+  system::check_real_holes(system.field(), system.plant(), region.corners(), "self-teach region");
   const auto& field = system.field();
   HindsightRules rules;
   rules.learn_speed = region.learn_speed;

@@ -7,9 +7,13 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <string_view>
 #include <thread>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "core/error.hpp"
 #include "system/system.hpp"
 
 namespace mg::system {
@@ -19,8 +23,20 @@ namespace mg::system {
 /// machine when they are not bound to their own cores.
 int default_thread_count();
 
-/// Threads to use: `requested` if > 0, else default_thread_count().
+/// The most threads a user may ask for (the CLI's --threads 0..256, Python's threads=).
+inline constexpr int kMaxThreads = 256;
+
+/// Throws InputError naming `what` unless 0 <= threads <= kMaxThreads (0: all cores).
+inline void check_threads(int threads, std::string_view what = "threads") {
+  if (threads < 0 || threads > kMaxThreads)
+    throw InputError(
+        fmt::format("{}: expected 0..{} (0: all cores), got {}", what, kMaxThreads, threads));
+}
+
+/// Threads to use: `requested` if > 0, else default_thread_count(). Throws InputError for a
+/// request outside 0..kMaxThreads.
 inline int thread_count(int requested) {
+  check_threads(requested);
   return requested > 0 ? requested : default_thread_count();
 }
 

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "core/check.hpp"
 #include "core/error.hpp"
 #include "field/field.hpp"
 
@@ -16,6 +17,11 @@ PuttReport putt(const System& sys, SystemData& data, const PuttSpec& spec) {
   r.ball = spec.ball ? *spec.ball : sys.field().tee;
   if (spec.ball_only && spec.aim)
     throw InputError("aim: only with the arm (a ball-only putt's angle is its aim)");
+  if (spec.world && (spec.aim || spec.ball_only))
+    throw InputError("world: a world direction picks its own stance (not with aim or ball only)");
+  // World directions are bounded like a ball-only launch angle: one turn, not any number.
+  if (spec.aim) require_in_range("aim", *spec.aim, -kMaxWorldAngle, kMaxWorldAngle);
+  if (spec.world) require_in_range("angle (world)", spec.angle, -kMaxWorldAngle, kMaxWorldAngle);
   if (spec.ball) check_ball_position(sys.field(), *spec.ball, "ball");
   if (spec.ball_only) {
     sim::PuttRequest request;
@@ -36,8 +42,6 @@ PuttReport putt(const System& sys, SystemData& data, const PuttSpec& spec) {
   options.record_interval = spec.record_interval;
   control::FullPuttResult f;
   if (spec.world) {
-    if (spec.aim || spec.ball_only)
-      throw InputError("world: a world direction picks its own stance (not with aim or ball only)");
     if (!hit_reachable(sys, spec.angle, spec.speed))
       throw InputError(fmt::format(
           "putt: no stance reaches angle {} rad at club speed {} m/s (expected a finite angle "

@@ -16,6 +16,10 @@ namespace mg::system {
 /// System.putt by default (recording changes no bit of the outcome).
 inline constexpr double kTrajectoryInterval = 0.01;
 
+/// [rad] A world direction (`aim`, a `world` angle) lies in [-this, this]: pi and a little, the
+/// bound of a ball-only launch angle (sim::PuttRequest).
+inline constexpr double kMaxWorldAngle = 3.15;
+
 /// What a user asks for.
 struct PuttSpec {
   /// [rad] With the arm: the hitting angle in the base's frame; ball only: the launch angle,
@@ -48,8 +52,9 @@ struct PuttReport {
   control::CoreTiming timing;        ///< arm putts: wall-clock time of the core updates
 };
 
-/// Checks `spec` (InputError naming the quantity: a ball off the lane, `aim` without the arm, a
-/// request outside the safe envelope, a hole off the lane), then plays the putt with `data`:
+/// Checks `spec` (InputError naming the quantity: a ball off the lane, `aim` without the arm,
+/// `world` with `aim` or ball only, a world direction beyond kMaxWorldAngle, a request outside
+/// the safe envelope, a hole off the lane), then plays the putt with `data`:
 /// ball only, `sim::simulate_putt` in the ball world with the hole where the plant puts it;
 /// with the arm, `arm_putt` with the base beside the ball (putt_stance). InputError if the module
 /// refuses the hit, NumericalError if the club does not reach the ball. Deterministic.

@@ -125,9 +125,12 @@ Session::Session(const ModuleConfig& config, const SessionOptions& options, std:
   }
 }
 
-Session::~Session() {
+Session::~Session() { close(); }
+
+bool Session::close() {
   stop_threads();
   finish_recording();
+  return recording_error_.empty();
 }
 
 const sim::OutcomeTracker* Session::tracker_for(std::array<double, 2> hole) {

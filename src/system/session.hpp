@@ -124,6 +124,12 @@ class Session {
   /// After mg::defer_termination_signals, a SIGINT/SIGTERM/SIGHUP ends a `wait` and the session
   /// as `quit` does, the recording written first.
   void run(std::istream& in, bool prompt);
+  /// Stops the threads and writes an active recording, as the destructor does (idempotent).
+  /// False if the recording at the end could not be written (the session said why on its
+  /// output, and recording_error() says it again): a program ends with an error then, not with
+  /// success.
+  bool close();
+  const std::string& recording_error() const { return recording_error_; }
 
   // Observers (thread-safe).
   ModuleState state() const;
@@ -165,7 +171,7 @@ class Session {
   void core_thread();
   void io_thread();
   void stop_threads();
-  void finish_recording();  ///< writes an active recording and says so
+  void finish_recording();  ///< writes an active recording and says so (or why not)
   void say(std::string_view text);
   void do_command(const control::ConsoleCommand& command);
   void do_status();
@@ -205,7 +211,8 @@ class Session {
   // The user side.
   std::optional<learning::Model> params_;
   std::string params_path_;
-  control::Recorder recorder_;  ///< under recorder_mutex_
+  control::Recorder recorder_;   ///< under recorder_mutex_
+  std::string recording_error_;  ///< why the recording at the end was not written (user thread)
   std::uint64_t dropped_reported_ = 0;
 
   mutable std::mutex mutex_;           ///< lockstep: the core side (the caller's ticks, inspect)

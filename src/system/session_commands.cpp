@@ -116,6 +116,7 @@ void Session::finish_recording() {
     const std::size_t n = recorder_.stop();
     say(fmt::format("recording written: {} rows to {}", n, recorder_.path().string()));
   } catch (const Error& e) {
+    recording_error_ = e.what();
     say(fmt::format("error: {}", e.what()));
   }
 }

@@ -151,7 +151,26 @@ double gaussian(Rng& rng) {
 }  // namespace
 
 std::array<double, 2> real_hole(const System& system, std::array<double, 2> hole) {
-  const plant::Plant& p = system.plant();
+  return real_hole(system.plant(), hole);
+}
+
+void check_real_holes(const field::Field& field, const plant::Plant& plant,
+                      const std::vector<std::array<double, 2>>& holes, std::string_view where) {
+  if (plant.empty()) return;
+  for (const auto& seen : holes) {
+    const auto real = real_hole(plant, seen);
+    try {
+      field::check_hole_position(field, real);
+    } catch (const InputError& e) {
+      throw InputError(
+          fmt::format("{}: plant {}: the hole seen at ({}, {}) is really at ({}, {}): {}", where,
+                      plant.source.empty() ? "(in code)" : plant.source, seen[0], seen[1], real[0],
+                      real[1], e.what()));
+    }
+  }
+}
+
+std::array<double, 2> real_hole(const plant::Plant& p, std::array<double, 2> hole) {
   const auto& offset = p.field.hole_offset;
   if (offset[0] != 0.0 || offset[1] != 0.0) hole = {hole[0] + offset[0], hole[1] + offset[1]};
   if (p.perception.noise > 0.0) {

@@ -9,6 +9,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "control/full_system.hpp"
 #include "control/module_config.hpp"
@@ -123,6 +125,15 @@ struct SystemData {
 /// situation's vision error (plant perception.noise, drawn from the hole's bits: the same
 /// situation has the same error in every putt, the oracle's included). `hole` without a plant.
 std::array<double, 2> real_hole(const System& system, std::array<double, 2> hole);
+/// The same for a plant, before any System of it is built.
+std::array<double, 2> real_hole(const plant::Plant& plant, std::array<double, 2> hole);
+
+/// Throws InputError (prefixed `where`, naming the plant file) if the plant puts one of `holes`
+/// (where the robot sees them) where no hole may be on `field` (off the lane, in an obstacle, on
+/// the tee): checked before a run starts, not found by its first putt there after others ran.
+/// Without a plant nothing is checked (the holes are the field's, checked by their readers).
+void check_real_holes(const field::Field& field, const plant::Plant& plant,
+                      const std::vector<std::array<double, 2>>& holes, std::string_view where);
 
 /// The arm hits the ball (lockstep simulator mode) with the hole seen at `hole` (real_hole is
 /// where it is): hitting angle `angle` [rad], club speed `speed` [m/s]; the plant's arm and vision

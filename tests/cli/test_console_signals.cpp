@@ -161,4 +161,31 @@ TEST(ConsoleSignalRealtime, KeepsTheRecordingWithTheThreadsRunning) {
   expect_recording_kept(dir, rec, read_all(out), SIGINT, status, "SIGINT");
 }
 
+// Issue 38, item 10: when the recording could not be written at the end (its folder gone), the
+// session said so but the console exited 0. Now the answer stays and the exit is 2 with one line.
+TEST(ConsoleRecording, ARecordingNotWrittenAtTheEndIsAnError) {
+  Dir dir("mg_rec_lost");
+  const fs::path sub = dir.path / "sub", rec = sub / "rec.csv", out = dir.path / "out.txt",
+                 err = dir.path / "err.txt", fifo = dir.path / "in";
+  fs::create_directories(sub);
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const pid_t pid = spawn_shell(std::string("exec ") + MINIGOLF_BINARY + " console < " +
+                                fifo.string() + " > " + out.string() + " 2> " + err.string());
+  ASSERT_GT(pid, 0);
+  const int w = open(fifo.c_str(), O_WRONLY);
+  ASSERT_GE(w, 0);
+  const std::string lines = "record on " + rec.string() + "\nwait 0.1\nstatus\n";
+  ASSERT_EQ(write(w, lines.data(), lines.size()), static_cast<ssize_t>(lines.size()));
+  ASSERT_TRUE(wait_for_text(out, "recording:", 60s)) << read_all(out);
+  fs::remove_all(sub);
+  close(w);  // end of input: quit, and the recording is due
+  const int status = wait_or_kill(pid, 60s);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2) << read_all(out) << read_all(err);
+  EXPECT_NE(read_all(out).find("error: "), std::string::npos) << read_all(out);
+  const std::string e = read_all(err);
+  EXPECT_EQ(e.rfind("minigolf: error: console: the recording was not written: ", 0), 0u) << e;
+  EXPECT_EQ(count_lines(e), 1) << e;
+}
+
 }  // namespace

@@ -57,7 +57,7 @@ TEST(PlantCommands, RandomPlantsAreFilesThatEveryCommandReads) {
 }
 
 TEST(PlantCommands, AnEmptyPlantGivesTheSameOutcome) {
-  const auto empty = write("empty.yaml", "");
+  const auto empty = write("empty.yaml", "format_version: 1\n");
   const auto with = nlohmann::json::parse(
       run_minigolf("putt --field regular-hill --angle 0.01 --speed 1.7 --json --plant " +
                    empty.string())
@@ -70,13 +70,18 @@ TEST(PlantCommands, AnEmptyPlantGivesTheSameOutcome) {
 }
 
 TEST(PlantCommands, BadPlantsAreOneLineAndExitTwo) {
-  const auto unknown = write("unknown.yaml", "field:\n  grass: 0.2\n");
-  const auto range = write("range.yaml", "arm:\n  club_speed_scale: 9\n");
+  const auto unknown = write("unknown.yaml", "format_version: 1\nfield:\n  grass: 0.2\n");
+  const auto range = write("range.yaml", "format_version: 1\narm:\n  club_speed_scale: 9\n");
+  // Issue 38, item 11: a 0-byte plant and one without its version were the identity.
+  const auto zero = write("zero.yaml", "");
+  const auto unversioned = write("unversioned.yaml", "arm:\n  club_speed_scale: 0.9\n");
   for (const std::string& cmd : std::vector<std::string>{
            "putt --field flat --angle 0 --speed 1.6 --plant " + unknown.string(),
            "putt --field flat --angle 0 --speed 1.6 --ball-only --plant " + range.string(),
-           "sweep --field flat --angles 0:0:1 --speeds 1.6:1.6:1 -o /dev/null --plant " +
-               unknown.string(),
+           "sweep --field flat --angles 0:0:1 --speeds 1.6:1.6:1 -o " +
+               scratch("sweep.csv").string() + " --plant " + unknown.string(),
+           "putt --field flat --angle 0 --speed 1.6 --plant " + zero.string(),
+           "putt --field flat --angle 0 --speed 1.6 --ball-only --plant " + unversioned.string(),
            "evaluate --field flat --model /no/model.json --plant " + unknown.string(),
            "putt --field flat --angle 0 --speed 1.6 --plant /no/such/plant.yaml",
            "putt --field flat --angle 0 --speed 1.6 --plant /tmp",
@@ -89,8 +94,11 @@ TEST(PlantCommands, BadPlantsAreOneLineAndExitTwo) {
       run_minigolf("putt --field flat --angle 0 --speed 1.6 --plant " + unknown.string());
   EXPECT_NE(r.err.find("field.grass: unknown key"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(unknown.string()), std::string::npos) << r.err;
-  std::filesystem::remove(unknown);
-  std::filesystem::remove(range);
+  EXPECT_NE(run_minigolf("plant show " + zero.string()).err.find("empty plant file"),
+            std::string::npos);
+  EXPECT_NE(run_minigolf("plant show " + unversioned.string()).err.find("format_version: missing"),
+            std::string::npos);
+  for (const auto& p : {unknown, range, zero, unversioned}) std::filesystem::remove(p);
 }
 
 }  // namespace

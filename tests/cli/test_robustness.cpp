@@ -362,5 +362,95 @@ TEST_F(Robustness, ConsoleRefusesARecordingToADeviceWhenItIsAsked) {
   EXPECT_EQ(r.out.find("recording to /dev/full"), std::string::npos) << r.out;
 }
 
+// ---- Issue 38: the fourth hostile round.
+
+// Item 4: self-teach, evaluate (also --learn --save-model) and study adaptation ran everything,
+// then refused their output (adaptation after 6.6 s). Every target is checked as the command
+// line is read: exit 2 in one line at once, the FIFO, link, folder and device left as they were.
+TEST_F(Robustness, OutputTargetsAreCheckedBeforeAnyWork) {
+  const std::string model = path("m.json");
+  ASSERT_EQ(run_minigolf("train --method gpr --restarts 1 " + train_ + " -o " + model).exit_code,
+            0);
+  const std::string fifo = path("out.fifo"), link = path("out.link"), kept = write("k.txt", "k\n");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_symlink(kept, link);
+  const std::string eval = "evaluate --field flat --situations 5 --no-oracle --model " + model;
+  for (const std::string& target : {fifo, link, dir_.string(), std::string("/dev/null")})
+    for (const std::string& args : {
+             "self-teach --field flat --budget 3 -o " + target,
+             "self-teach --field flat --budget 3 -o " + path("st.json") + " --log " + target,
+             eval + " -o " + target,
+             eval + " --learn --save-model " + target,
+             "study adaptation --field flat --plants 1 --situations 5 --checkpoints 0,1 "
+             "--no-oracle --model " +
+                 model + " -o " + target,
+         }) {
+      const auto start = std::chrono::steady_clock::now();
+      const CommandResult r = run_minigolf(args);
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      expect_input_error(r, args, {"minigolf: error: --", "refusing to replace"});
+      EXPECT_LT(seconds, 3.0) << args;  // no putt was played
+    }
+  EXPECT_TRUE(fs::is_fifo(fs::symlink_status(fifo)));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_FALSE(fs::exists(path("st.json")));
+}
+
+// Item 5: an empty value read as "not given": `putt --angle ''` played angle 0, `--plant ''`
+// without a plant, `-o ''` wrote nothing with exit 0. Every option refuses it, naming itself.
+TEST_F(Robustness, EmptyValuesAreErrorsNamingTheOption) {
+  const std::string putt = "putt --field flat --angle 0.01 --speed 1.6";
+  const std::pair<std::string, std::string> cases[] = {
+      {"putt --field flat --angle '' --speed 1.6", "--angle"},
+      {putt + " --plant ''", "--plant"},
+      {"putt --field '' --angle 0.01 --speed 1.6", "--field"},
+      {putt + " --ball ''", "--ball"},
+      {putt + " --hole ''", "--hole"},
+      {putt + " --trajectory ''", "--trajectory"},
+      {"render --course thesis --hole '' -o " + path("film"), "--hole"},
+      {"play --course thesis --player greedy -o ''", "--output"},
+      {"evaluate --field flat --model x.json -o ''", "--output"},
+      {"evaluate --field flat --model x.json --learn --save-model ''", "--save-model"},
+      {"study adaptation --model x.json -o ''", "--output"},
+      {"train '' -o " + path("m.json"), "data"},
+      {"play --course '' --player greedy", "--course"},
+  };
+  for (const auto& [args, option] : cases) {
+    const CommandResult r = run_minigolf(args);
+    expect_input_error(r, args,
+                       {"minigolf: error: " + option + ": expected a value, got an empty"});
+    EXPECT_TRUE(r.out.empty()) << args << "\n" << r.out;
+  }
+}
+
+// Item 10: missing, unknown and repeated options exited 106, 109 or 114 with CLI11's two lines
+// and no "minigolf: error:" prefix; every malformed command line is now exit 2 in one line, and
+// a huge unknown argument is shown shortened.
+TEST_F(Robustness, MalformedCommandLinesExitTwoInOneLine) {
+  for (const std::string& args :
+       {std::string("putt --speed 1.6"), std::string("putt --angle 0 --speed 1.6 --bogus"),
+        std::string("putt --angle 0 --angle 1 --speed 1.6"), std::string(""),
+        std::string("no-such-command"), std::string("putt --angle"),
+        "putt --angle 0 --speed 1.6 --" + std::string(100000, 'x')}) {
+    const CommandResult r = run_minigolf(args);
+    EXPECT_EQ(r.exit_code, 2) << args.substr(0, 80) << "\n" << r.err.substr(0, 300);
+    EXPECT_EQ(count_lines(r.err), 1) << args.substr(0, 80) << "\n" << r.err.substr(0, 300);
+    EXPECT_EQ(r.err.rfind("minigolf: error: ", 0), 0u) << r.err.substr(0, 300);
+    EXPECT_LT(r.err.size(), 1200u) << args.substr(0, 80);
+  }
+  const CommandResult help = run_minigolf("putt --help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("--angle"), std::string::npos);
+}
+
+// Item 9: a world direction of 1e18 rad (and --aim 1e18) played.
+TEST_F(Robustness, WorldAnglesAreBounded) {
+  const CommandResult angle = run_minigolf("putt --field flat --angle 1e18 --speed 1.6 --world");
+  expect_input_error(angle, "--angle 1e18 --world", {"angle (world)", "[-3.15, 3.15]"});
+  const CommandResult aim = run_minigolf("putt --field flat --angle 0 --speed 1.6 --aim 1e18");
+  expect_input_error(aim, "--aim 1e18", {"aim", "[-3.15, 3.15]"});
+}
+
 }  // namespace
 }  // namespace mg::cli::testing

@@ -61,5 +61,13 @@ TEST(ConsoleCommand, RandomBytesNeverCrash) {
   }
 }
 
+// Issue 38, item 10: a 100,000-character unknown command was echoed whole in the answer.
+TEST(ConsoleCommand, AnUnknownCommandIsQuotedShortOnOneLine) {
+  const ConsoleParse p = parse_console_line(std::string(100000, 'x'));
+  EXPECT_EQ(p.error,
+            "unknown command '" + std::string(40, 'x') + "... (100000 characters)' (type help)");
+  EXPECT_EQ(parse_console_line("fly\x1b[2J").error, "unknown command 'fly?[2J' (type help)");
+}
+
 }  // namespace
 }  // namespace mg::control

@@ -78,6 +78,23 @@ TEST(ModuleConfig, GroupedKeysReadAsFlatOnesAndAWrongGroupIsNamed) {
   }
 }
 
+// Issue 38, item 6: a key twice kept the first; a second document was ignored.
+TEST(ModuleConfig, DuplicateKeysAndSecondDocumentsAreRefused) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"kp: 100\nkp: 200\n", "cfg: kp: duplicate key"},
+      {"controller: {kp: 1, kp: 2}\n", "cfg: controller.kp: duplicate key"},
+      {"kp: 100\n---\nkp: 200\n", "cfg: a second YAML document at line 2"},
+  };
+  for (const auto& [text, message] : cases) {
+    try {
+      parse_module_config(text, "cfg");
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(message, 0), 0u) << e.what();
+    }
+  }
+}
+
 TEST(ModuleConfig, EachPartComparesOnlyItsOwnKeys) {
   ModuleConfig a, b;
   b.vision_port = 0;

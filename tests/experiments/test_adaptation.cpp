@@ -27,7 +27,8 @@ const learning::Model& nominal_model() {
 }
 
 plant::Plant slow_grass() {
-  return plant::parse_plant("field: {rolling_resistance_scale: 1.15}\n", "slow.yaml");
+  return plant::parse_plant("format_version: 1\nfield: {rolling_resistance_scale: 1.15}\n",
+                            "slow.yaml");
 }
 
 EvaluateOptions play(int n, std::uint64_t seed) {
@@ -76,7 +77,7 @@ TEST(Adaptation, LearningWhilePlayingTheResidualWayBeatsAppending) {
 TEST(Adaptation, AnEmptyPlantChangesNoBitOfAnEvaluation) {
   const auto config = system::load_config("", "regular-hill");
   const system::System nominal(config);
-  const system::System empty(config, plant::parse_plant("", "empty.yaml"));
+  const system::System empty(config, plant::parse_plant("format_version: 1\n", "empty.yaml"));
   const auto& region = nominal.field().situations;
   EvaluateOptions o = play(4, 2);
   o.oracle = true;

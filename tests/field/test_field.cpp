@@ -77,6 +77,24 @@ TEST(Field, BadInputNamesTheProblem) {
   expect_error_mentions(edited("surface:\n  - {type: plane}", "surface: []"), "surface");
 }
 
+// Issue 38, items 6 and 11: yaml-cpp read the first of two equal keys and ignored a second
+// document; a name with a control character split one-line reports. All are refused.
+TEST(Field, DuplicateKeysSecondDocumentsAndControlCharactersInTheNameAreRefused) {
+  expect_error_mentions(
+      edited("rolling_resistance: 0.131", "rolling_resistance: 0.131\nrolling_resistance: 0.5"),
+      "test.yaml: rolling_resistance: duplicate key");
+  expect_error_mentions(edited("position: [2.0, 0.0]}", "position: [2.0, 0.0], position: [1, 0]}"),
+                        "test.yaml: hole.position: duplicate key");
+  expect_error_mentions(edited("- {type: plane}", "- {type: plane, type: bump}"),
+                        "test.yaml: surface[0].type: duplicate key");
+  expect_error_mentions(std::string(kMinimal) + "---\nname: second\n",
+                        "test.yaml: a second YAML document at line");
+  expect_error_mentions(edited("name: test", "name: \"te\\nst\""),
+                        "test.yaml: name: expected a name without control characters");
+  expect_error_mentions(edited("name: test", "name: \"te\\x1bst\""), "0x1b");
+  EXPECT_EQ(parse(std::string("---\n") + kMinimal).name, "test");  // one marked document is fine
+}
+
 TEST(Field, FlattenTermDefaultsToTheTeeAndChecksItsRadii) {
   const Field f =
       parse(edited("{type: plane}", "{type: plane, slope_x: 0.04}\n  - {type: flatten}"));

@@ -103,6 +103,35 @@ TEST(Course, BadFilesAreOneLineErrorsNamingFileAndKey) {
   }
 }
 
+// Issue 38: a hole walled off from the tee (item 7) played six strokes, three of them penalties;
+// a key twice or a second YAML document (item 6) was read as the first; a name with a newline
+// (item 11) split the progress line. Each is now refused at load, in one line naming the key.
+TEST(Course, UnplayableAmbiguousOrMultiLineCoursesAreRefused) {
+  const std::string head = "format_version: 1\nname: x\nholes:\n";
+  struct Case {
+    std::string yaml, expected;
+  };
+  const Case cases[] = {
+      {head + "  - {field: l-shape, hole: [1.0, 1.2], par: 3}\n",
+       "c.yaml: holes[0] (tee/hole): the hole (1, 1.2) cannot be reached from the tee (0, 0)"},
+      {head + "  - {field: flat, par: 2, par: 3}\n",
+       "c.yaml: holes[0].par: duplicate key (a key may appear once per mapping)"},
+      {"format_version: 1\nname: x\nname: y\nholes: [{field: flat, par: 2}]\n",
+       "c.yaml: name: duplicate key"},
+      {head + "  - {field: flat, par: 2}\n---\nholes: [{field: l-shape, par: 9}]\n",
+       "c.yaml: a second YAML document at line 5 (expected one"},
+      {"format_version: 1\nname: \"a\\nb\"\nholes: [{field: flat, par: 2}]\n",
+       "c.yaml: name: expected a name without control characters"},
+  };
+  for (const auto& c : cases) {
+    const std::string e = error_of(c.yaml);
+    EXPECT_EQ(e.rfind(c.expected, 0), 0u) << c.yaml << " -> " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  }
+  // The same lane with the hole round the corner is playable.
+  EXPECT_EQ(error_of(head + "  - {field: l-shape, par: 3}\n"), "");
+}
+
 TEST(Course, UnknownShippedNameListsTheShippedOnes) {
   try {
     load_course("no-such-course");

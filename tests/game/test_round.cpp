@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "plant/plant.hpp"
 #include "system/system.hpp"
 
 namespace mg::game {
@@ -104,6 +105,30 @@ TEST(Round, TheRobotHitsWithTheArmAndCountsItsLearningPutts) {
       EXPECT_NEAR(h.putts[k].ball[0], h.putts[k - 1].rest[0], 0.02);
       EXPECT_NEAR(h.putts[k].ball[1], h.putts[k - 1].rest[1], 0.02);
     }
+}
+
+// Issue 38, item 3: the rule that moves a ball resting over the cup's rim used the hole the
+// robot believes in; with the plant's hole 0.2 m further, balls resting on flat ground near the
+// believed hole were moved before the next stroke (a rest at x = 1.046 played from 1.076).
+TEST(Round, TheRimRuleUsesTheTrueCup) {
+  const Course c = one_hole("flat", {0.0, 0.0}, {1.0, 0.0});
+  const auto config = system::load_config("", "flat");
+  const plant::Plant plant =
+      plant::parse_plant("format_version: 1\nfield: {hole_offset: [0.2, 0.0]}\n", "p.yaml");
+  RoundOptions o;  // as `play --player greedy --seed 0`
+  o.player = Player::kGreedy;
+  const RoundResult r = play_round(c, config, plant, o);
+  const auto& putts = r.holes[0].putts;
+  const field::Field& f = c.holes[0].field;
+  const double rim = 0.5 * f.hole.diameter + f.ball.radius + 1e-3;
+  int near_believed = 0;
+  for (std::size_t k = 1; k < putts.size(); ++k) {
+    const auto& rest = putts[k - 1].rest;
+    if (putts[k - 1].left_lane || std::hypot(rest[0] - 1.2, rest[1]) < rim) continue;
+    EXPECT_EQ(putts[k].ball, rest) << "stroke " << k;  // played where it rests
+    near_believed += std::hypot(rest[0] - 1.0, rest[1]) < rim;
+  }
+  EXPECT_GE(near_believed, 1);  // the case of the issue happened
 }
 
 TEST(Round, MaxStrokesEndsTheHole) {

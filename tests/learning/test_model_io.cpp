@@ -81,5 +81,35 @@ TEST(LearningModel, BrokenOrIncompatibleModelFilesAreClearErrors) {
   expect_model_error(j, "gmms");
 }
 
+// Issue 38, item 8: a model with an input named twice predicted one angle for every query (both
+// places read one column); also inside a residual's prior. Item 6: a key twice in the file (the
+// last won) is refused by the JSON reader.
+TEST(LearningModel, DuplicateNamesAndKeysAreRefused) {
+  const nlohmann::json gpr = model_to_json(train(flat_field(10, 16), options(Method::kGpr)));
+  const std::string first = gpr["inputs"][0].get<std::string>();
+  nlohmann::json j = gpr;
+  j["inputs"] = {first, first};
+  expect_model_error(j, "m.json.inputs: '" + first + "' appears twice (expected distinct names)");
+  j = gpr;
+  j["outputs"] = {"angle", "angle"};
+  expect_model_error(j, "m.json.outputs: 'angle' appears twice");
+  j = gpr;
+  j["prior"] = gpr;
+  j["prior"]["inputs"] = {first, first};
+  expect_model_error(j, "m.json.prior.inputs: '" + first + "' appears twice");
+
+  testing::ScratchDir dir;
+  const auto path = dir / "dup.json";
+  std::string text = gpr.dump();
+  text.insert(1, "\"method\": \"gmr\", ");  // the file's own "method" comes later
+  write_file_atomic(path, text);
+  try {
+    load_model(path);
+    FAIL() << "a duplicate key was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("duplicate key 'method'"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace mg::learning

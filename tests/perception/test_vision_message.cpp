@@ -25,6 +25,27 @@ TEST(VisionMessage, RoundTrip) {
   EXPECT_EQ(p.message.hole, m.hole);
 }
 
+// Issue 38, item 6: a key twice (the last one won, "format" too) and a valid datagram followed by
+// a NUL byte and garbage (nlohmann stopped at the NUL) are malformed, not accepted.
+TEST(VisionMessage, RejectsDuplicateKeysAndANulByte) {
+  const std::string ok = R"({"format": "minigolf-vision/1", "seq": 1, "stamp": 0.5, )"
+                         R"("ball": [0, 0, 0.02], "hole": [2, 0, 0]})";
+  ASSERT_EQ(parse_vision_message(ok, kLimits).error, VisionError::kNone);
+  EXPECT_EQ(parse_vision_message(ok + std::string(1, '\0') + "garbage", kLimits).error,
+            VisionError::kMalformed);
+  EXPECT_EQ(parse_vision_message(R"({"format": "other/9", "format": "minigolf-vision/1", )"
+                                 R"("seq": 1, "stamp": 0.5, "ball": [0, 0, 0.02], )"
+                                 R"("hole": [2, 0, 0]})",
+                                 kLimits)
+                .error,
+            VisionError::kMalformed);
+  EXPECT_EQ(parse_vision_message(R"({"format": "minigolf-vision/1", "seq": 1, "stamp": 0.5, )"
+                                 R"("ball": [9, 9, 9], "ball": [0, 0, 0.02], "hole": [2, 0, 0]})",
+                                 kLimits)
+                .error,
+            VisionError::kMalformed);
+}
+
 TEST(VisionMessage, RejectsEveryKindOfBadDatagram) {
   const std::string ok_tail = R"("ball": [0, 0, 0.02], "hole": [2, 0, 0]})";
   const std::string head = R"({"format": "minigolf-vision/1", "seq": 1, "stamp": 0.5, )";

@@ -21,13 +21,35 @@ std::string error_of(const std::string& yaml) {
   return "";
 }
 
-TEST(Plant, AnEmptyFileIsTheIdentity) {
-  EXPECT_TRUE(parse_plant("", "p.yaml").empty());
+TEST(Plant, OnlyTheVersionIsTheIdentity) {
   EXPECT_TRUE(parse_plant("format_version: 1\n", "p.yaml").empty());
   EXPECT_TRUE(parse_plant("format_version: 1\narm: {club_speed_scale: 1.0}\n", "p.yaml").empty());
-  EXPECT_FALSE(parse_plant("arm: {launch_angle_bias: 0.001}\n", "p.yaml").empty());
-  EXPECT_FALSE(parse_plant("field: {extra_slope: [0, 0.001]}\n", "p.yaml").empty());
-  EXPECT_FALSE(parse_plant("perception: {latency: 0.01}\n", "p.yaml").empty());
+  EXPECT_FALSE(
+      parse_plant("format_version: 1\narm: {launch_angle_bias: 0.001}\n", "p.yaml").empty());
+  EXPECT_FALSE(
+      parse_plant("format_version: 1\nfield: {extra_slope: [0, 0.001]}\n", "p.yaml").empty());
+  EXPECT_FALSE(parse_plant("format_version: 1\nperception: {latency: 0.01}\n", "p.yaml").empty());
+}
+
+// Issue 38, item 11: a 0-byte plant or one without format_version was the identity; like fields
+// and courses a plant now names its version. Item 6: a key given twice, or a second YAML
+// document, is refused (yaml-cpp read the first value and ignored the second document).
+TEST(Plant, TheVersionIsRequiredAndKeysAreUnique) {
+  // yaml-cpp's own multi-document reader never returned on ",": one line, at once.
+  EXPECT_EQ(error_of(","), "p.yaml: malformed YAML: nothing readable at line 1, column 1");
+  EXPECT_EQ(error_of(""),
+            "p.yaml: empty plant file (expected format_version: 1 and the keys that differ from "
+            "the robot's model)");
+  EXPECT_NE(error_of("# nothing but a comment\n").find("empty plant file"), std::string::npos);
+  EXPECT_EQ(error_of("arm: {club_speed_scale: 0.9}\n"),
+            "p.yaml: format_version: missing (required)");
+  EXPECT_EQ(error_of("format_version: 1\narm: {club_speed_scale: 0.9, club_speed_scale: 1.1}\n"),
+            "p.yaml: arm.club_speed_scale: duplicate key (a key may appear once per mapping)");
+  EXPECT_NE(error_of("format_version: 1\nformat_version: 1\n").find("format_version: duplicate"),
+            std::string::npos);
+  EXPECT_NE(error_of("format_version: 1\n---\narm: {club_speed_scale: 0.5}\n")
+                .find("p.yaml: a second YAML document at line 2"),
+            std::string::npos);
 }
 
 TEST(Plant, ReadsEveryKey) {
@@ -63,24 +85,39 @@ perception:
 }
 
 TEST(Plant, BadFilesNameTheFileAndTheKey) {
-  EXPECT_NE(error_of("field: {grass: 1}\n").find("p.yaml: field.grass: unknown key"),
-            std::string::npos);
-  EXPECT_NE(error_of("arms: {}\n").find("arms: unknown key"), std::string::npos);
+  EXPECT_NE(
+      error_of("format_version: 1\nfield: {grass: 1}\n").find("p.yaml: field.grass: unknown key"),
+      std::string::npos);
+  EXPECT_NE(error_of("format_version: 1\narms: {}\n").find("arms: unknown key"), std::string::npos);
   EXPECT_NE(error_of("format_version: 2\n").find("format_version"), std::string::npos);
-  EXPECT_NE(error_of("arm: {club_speed_scale: 7}\n").find("arm.club_speed_scale"),
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "arm: {club_speed_scale: 7}\n")
+                .find("arm.club_speed_scale"),
             std::string::npos);
-  EXPECT_NE(error_of("arm: {club_speed_scale: nan}\n").find("arm.club_speed_scale"),
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "arm: {club_speed_scale: nan}\n")
+                .find("arm.club_speed_scale"),
             std::string::npos);
-  EXPECT_NE(error_of("arm: {joint_friction: [1, 2]}\n").find("arm.joint_friction"),
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "arm: {joint_friction: [1, 2]}\n")
+                .find("arm.joint_friction"),
             std::string::npos);
-  EXPECT_NE(error_of("arm: {joint_friction: [0,0,0,0,0,0,-1]}\n").find("arm.joint_friction[6]"),
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "arm: {joint_friction: [0,0,0,0,0,0,-1]}\n")
+                .find("arm.joint_friction[6]"),
             std::string::npos);
-  EXPECT_NE(error_of("field: {rolling_resistance: 0.1, rolling_resistance_scale: 1.1}\n")
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "field: {rolling_resistance: 0.1, rolling_resistance_scale: 1.1}\n")
                 .find("give one"),
             std::string::npos);
-  EXPECT_NE(error_of("perception: {latency: 1e300}\n").find("perception.latency"),
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "perception: {latency: 1e300}\n")
+                .find("perception.latency"),
             std::string::npos);
-  EXPECT_NE(error_of("field: [1, 2]\n").find("field"), std::string::npos);
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "field: [1, 2]\n")
+                .find("field"),
+            std::string::npos);
   EXPECT_NE(error_of("{{{").find("malformed YAML"), std::string::npos);
   EXPECT_THROW(load_plant("/no/such/plant.yaml"), InputError);
   EXPECT_THROW(load_plant("/tmp"), InputError);  // a directory

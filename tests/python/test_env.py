@@ -230,7 +230,7 @@ def test_shaped_reward_is_the_closest_approach_with_its_parts():
 
 def test_a_plant_is_the_world_the_episodes_happen_in(tmp_path):
     plant = tmp_path / "slow.yaml"
-    plant.write_text("field:\n  rolling_resistance_scale: 1.2\n")
+    plant.write_text("format_version: 1\nfield:\n  rolling_resistance_scale: 1.2\n")
     real = PuttEnv(field="flat", mode="ball", plant=str(plant))
     nominal = PuttEnv(field="flat", mode="ball")
     a = np.array([0.0, 2.4])
@@ -241,6 +241,23 @@ def test_a_plant_is_the_world_the_episodes_happen_in(tmp_path):
     assert ir["closest_approach"] != inom["closest_approach"]  # the ball rolls in another world
     with pytest.raises(ValueError, match="plant"):
         PuttEnv(field="flat", mode="ball", plant=str(tmp_path / "missing.yaml"))
+
+
+def test_a_pickled_environment_keeps_the_plant_it_was_made_with(tmp_path):
+    """Issue 38, item 11: unpickling re-read the plant file, so a clone played another world."""
+    import pickle
+    plant = tmp_path / "slow.yaml"
+    plant.write_text("format_version: 1\nfield:\n  rolling_resistance_scale: 1.2\n")
+    env = PuttEnv(field="flat", mode="ball", plant=str(plant))
+    payload = pickle.dumps(env)
+    plant.write_text("format_version: 1\nfield:\n  rolling_resistance_scale: 0.5\n")  # changed after
+    clone = pickle.loads(payload)
+    assert clone.systems[0].plant == env.systems[0].plant  # the same path and content hash
+    a = np.array([0.0, 2.4])
+    env.reset(seed=1), clone.reset(seed=1)
+    assert env.step(a)[4]["closest_approach"] == clone.step(a)[4]["closest_approach"]
+    plant.unlink()
+    assert pickle.loads(payload).systems[0].plant == env.systems[0].plant  # even without the file
 
 
 def test_reproducible_with_a_seed():

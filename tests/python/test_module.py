@@ -298,7 +298,7 @@ def test_collect_equals_the_cli_file(flat, tmp_path):
 
 def test_a_plant_is_the_world_and_equals_the_cli(tmp_path):
     plant = tmp_path / "slow.yaml"
-    plant.write_text("field:\n  rolling_resistance_scale: 1.2\n")
+    plant.write_text("format_version: 1\nfield:\n  rolling_resistance_scale: 1.2\n")
     real = minigolf.System(field="flat", plant=str(plant))
     assert real.plant["path"] == str(plant) and len(real.plant["hash"]) == 16
     assert minigolf.System(field="flat").plant is None
@@ -308,7 +308,7 @@ def test_a_plant_is_the_world_and_equals_the_cli(tmp_path):
     assert ours == theirs
     nominal = minigolf.System(field="flat").putt(0.0, 2.4, ball_only=True).to_dict()
     assert ours["rest_position"][0] < nominal["rest_position"][0] - 0.05  # slower grass: shorter roll
-    (tmp_path / "bad.yaml").write_text("arm:\n  club_speed_scale: 9\n")
+    (tmp_path / "bad.yaml").write_text("format_version: 1\narm:\n  club_speed_scale: 9\n")
     with pytest.raises(ValueError, match="arm.club_speed_scale"):
         minigolf.System(field="flat", plant=str(tmp_path / "bad.yaml"))
 
@@ -345,3 +345,44 @@ def test_hostile_input_files_are_refused_at_once(tmp_path):
         with pytest.raises(OSError, match="regular files"):
             minigolf.Model.load(path)
     assert time.monotonic() - t0 < 5.0
+
+
+def test_a_system_data_of_another_system_is_refused(flat):
+    """Issue 38, item 2: another System's data made MuJoCo wait for Enter (or crash)."""
+    bank = minigolf.System(field="bank-shot")
+    other = flat.make_data()
+    for kwargs in (dict(), dict(ball_only=True)):
+        with pytest.raises(ValueError, match="another System"):
+            bank.putt(0.01, 1.5, data=other, **kwargs)
+    with pytest.raises(ValueError, match="another System"):
+        bank.teach(tuple(bank.field.hole_position), data=other)
+    assert bank.putt(0.01, 1.5, data=bank.make_data()).end  # its own data plays
+
+
+def test_a_mujoco_error_never_waits_for_enter(tmp_path):
+    """Issue 38, item 2: with stdin open, MuJoCo's own handler printed 'Press Enter to exit' and
+    waited; the module's handler prints one line and ends the interpreter at once."""
+    import sys
+    script = ("import ctypes, ctypes.util, minigolf\n"
+              "lib = ctypes.CDLL(ctypes.util.find_library('mujoco') or 'libmujoco.so')\n"
+              "lib.mju_error(b'the stack is full')\n")
+    r = subprocess.run([sys.executable, "-c", script], stdin=subprocess.PIPE, capture_output=True,
+                       text=True, timeout=60)
+    assert r.returncode == 1, r
+    assert r.stderr.strip() == "minigolf: error: MuJoCo: the stack is full", r.stderr
+    assert "Press Enter" not in r.stdout
+
+
+def test_world_angles_are_bounded_and_world_excludes_ball_only(flat):
+    """Issue 38, item 9: angle=1e18 with world=True and aim=1e308 played; ball_only with world was
+    accepted although its own message forbids it."""
+    with pytest.raises(ValueError, match=r"angle \(world\): expected a value in \[-3.15, 3.15\]"):
+        flat.putt(1e18, 1.6, world=True)
+    for aim in (1e308, -1e18, 4.0):
+        with pytest.raises(ValueError, match=r"aim: expected a value in \[-3.15, 3.15\]"):
+            flat.putt(0.0, 1.6, aim=aim)
+    with pytest.raises(ValueError, match="world"):
+        flat.putt(0.0, 1.6, ball_only=True, world=True)
+    for threads in (-1, 100000):
+        with pytest.raises(ValueError, match="threads"):
+            flat.sweep([0.0], [1.6], ball_only=True, threads=threads)

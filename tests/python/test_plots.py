@@ -283,6 +283,10 @@ def test_demo_wrapper(tmp_path, heights_csv):
     assert_png(run(tmp_path, script=script), tmp_path / "fields.png", 9 / (3.2 * 4))
     os.remove(tmp_path / "field_arctan.json")
     assert_error(run(tmp_path, script=script), "field_arctan.json")
+    # Issue 38, item 6: a key given twice (json keeps the last) is refused.
+    (tmp_path / "field_arctan.json").write_text(
+        '{"tee": [0, 0], "hole": [2.0, 0.0], "hole": [9.0, 0.0], "hole_diameter": 0.108}')
+    assert_error(run(tmp_path, script=script), "field_arctan.json", "duplicate key 'hole'")
 
 
 # ---- bad inputs: one line, exit 2, no PNG -------------------------------------------------------

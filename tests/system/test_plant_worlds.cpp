@@ -13,7 +13,10 @@ namespace {
 
 constexpr double kG = 9.81;
 
-plant::Plant plant_of(const std::string& yaml) { return plant::parse_plant(yaml, "test plant"); }
+/// A plant file of `yaml` after its version line.
+plant::Plant plant_of(const std::string& yaml) {
+  return plant::parse_plant("format_version: 1\n" + yaml, "test plant");
+}
 
 double distance(const sim::PuttOutcome& o, std::array<double, 2> from) {
   return std::hypot(o.rest_position[0] - from[0], o.rest_position[1] - from[1]);
@@ -22,7 +25,7 @@ double distance(const sim::PuttOutcome& o, std::array<double, 2> from) {
 TEST(PlantWorlds, AnEmptyPlantChangesNoBit) {
   const auto config = load_config("", "regular-hill");
   const System nominal(config);
-  const System empty(config, plant_of("format_version: 1\n"));
+  const System empty(config, plant_of(""));
   SystemData a(nominal), b(empty);
   const std::array<double, 2> hole{2.1, 0.05};
   const auto ra = arm_putt(nominal, a, hole, 0.02, 1.7, {});

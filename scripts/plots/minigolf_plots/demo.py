@@ -13,10 +13,20 @@ from .field import draw_field, read_heights, read_trajectory
 FIELDS = ["flat", "multiple-hills", "regular-hill", "arctan"]
 
 
+def _unique_keys(pairs):
+    """json's object_pairs_hook: a key given twice is an error (json keeps the last one)."""
+    out = {}
+    for key, value in pairs:
+        if key in out:
+            raise ValueError(f"duplicate key '{key[:80]}'")
+        out[key] = value
+    return out
+
+
 def read_json(path):
     try:
         with open(path, encoding="utf-8") as f:
-            return json.load(f)
+            return json.load(f, object_pairs_hook=_unique_keys)
     except FileNotFoundError:
         raise PlotError(f"{path}: no such file") from None
     except (OSError, ValueError) as e:

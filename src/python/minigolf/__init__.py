@@ -30,6 +30,7 @@ from ._minigolf import (  # noqa: F401
     load_dataset,
     mpi_built,
     play,
+    read_plant_file,
     train,
 )
 

@@ -31,8 +31,9 @@ When `gymnasium` imports, PuttEnv subclasses `gymnasium.Env` with `gymnasium.spa
 the ids are registered with gymnasium; otherwise `minigolf.env.Box` and `minigolf.make` give the
 same interface. The generator is numpy's `default_rng(seed)` either way (what Gymnasium's seeding
 makes), so a seed gives the same episodes with or without Gymnasium. Environments pickle (the
-System is rebuilt from the constructor's arguments) and deepcopy, so AsyncVectorEnv works with
-any start method.
+System is rebuilt from the constructor's arguments and the plant file's content as it was read at
+construction, so a clone plays the same world even if the file changed since) and deepcopy, so
+AsyncVectorEnv works with any start method.
 """
 from __future__ import annotations
 
@@ -199,6 +200,8 @@ class PuttEnv(_Base):
         self.reward_scale = float(reward_scale)
         self.max_duration = float(max_duration)
         self.normalize_actions = bool(normalize_actions)
+        # The plant's content, read once: pickling keeps it (not the path, whose file may change).
+        self._plant_text = _minigolf.read_plant_file(plant) if plant else None
         self._build_systems()
         self.observe_field = len(names) > 1 if observe_field is None else bool(observe_field)
         self._set_spaces()
@@ -214,7 +217,7 @@ class PuttEnv(_Base):
         k = self._init_kwargs
         names = [k["field"]] if isinstance(k["field"], str) else list(k["field"])
         self.systems = [_minigolf.System(field=n, config=k["config"], hitting_model=k["hitting_model"],
-                                         plant=k["plant"]) for n in names]
+                                         plant=k["plant"], plant_text=self._plant_text) for n in names]
         self._data = [s.make_data() for s in self.systems]
         self._regions = [s.field.region(k["situations"]) for s in self.systems]
         self._renderer = None
@@ -249,6 +252,7 @@ class PuttEnv(_Base):
         self.action_space = _Space(low=alow, high=ahigh, dtype=np.float32)
 
     # ---- pickling: the System and its MuJoCo data are rebuilt from the constructor's arguments
+    # and the plant's content (_plant_text)
     def __getstate__(self):
         return {k: v for k, v in self.__dict__.items() if k not in _UNPICKLED}
 
