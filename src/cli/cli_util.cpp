@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "belief/belief.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 
@@ -166,6 +167,11 @@ template std::array<double, 3> parse_vector<3>(const std::string&, const std::st
 plant::Plant load_plant_arg(const std::string& path) {
   if (path.empty()) return {};
   return plant::load_plant(path);
+}
+
+plant::Plant load_belief_arg(const std::string& path) {
+  if (path.empty()) return {};
+  return belief::load_belief(path).estimate;
 }
 
 nlohmann::json plant_json(const plant::Plant& plant) {

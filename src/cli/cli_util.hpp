@@ -105,13 +105,21 @@ inline constexpr const char* kPlantHelp =
     "Plant file: the world as it really is where it differs from the robot's model "
     "(docs/reality.md)";
 
+/// The robot's belief of `--belief PATH` (docs/belief.md; empty path: none, it believes its
+/// field file), as the plant keys it estimates. Throws InputError/IoError.
+plant::Plant load_belief_arg(const std::string& path);
+inline constexpr const char* kBeliefHelp =
+    "Belief file: what the robot believes of the world beyond its field file, e.g. from "
+    "`minigolf identify` (docs/belief.md)";
+
 /// The options every putting command shares (--field, --config, --hitting-model, --plant,
-/// --threads).
+/// --belief, --threads).
 struct SystemArgs {
   std::string field = "flat";
   std::string config;
   std::string hitting_model;
   std::string plant;
+  std::string belief;
   int threads = 0;
 };
 
@@ -122,6 +130,7 @@ inline void add_system_options(CLI::App* cmd, SystemArgs& a) {
   cmd->add_option("--hitting-model", a.hitting_model,
                   "Hitting DS model file (default: the shipped one)");
   cmd->add_option("--plant", a.plant, kPlantHelp);
+  cmd->add_option("--belief", a.belief, kBeliefHelp);
   cmd->add_option("--threads", a.threads, "Threads (0: all cores; results do not depend on it)")
       ->check(CLI::Range(0, 256))
       ->capture_default_str();

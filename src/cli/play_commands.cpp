@@ -76,7 +76,7 @@ void add_sweep(CLI::App& app) {
     check_output_file(a->out);  // before the sweep, not after it
     if (!a->plot.empty()) check_output_file(a->plot);
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
-                             load_plant_arg(a->sys.plant));
+                             load_plant_arg(a->sys.plant), load_belief_arg(a->sys.belief));
     if (!a->ball_only)
       for (double angle : o.angles)
         for (double speed : o.speeds) sys.check_request(angle, speed, "sweep");
@@ -134,7 +134,7 @@ void add_collect(CLI::App& app) {
   cmd->add_option("-o,--output", a->out, "Data set CSV to write")->check(output_file())->required();
   cmd->callback([a] {
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
-                             load_plant_arg(a->sys.plant));
+                             load_plant_arg(a->sys.plant), load_belief_arg(a->sys.belief));
     const field::Situations region = field::region_from_spec(sys.field(), a->situations, a->balls);
     experiments::CollectOptions o;
     o.teacher = teacher::options_for(region, a->strategy);
@@ -219,7 +219,7 @@ void add_evaluate(CLI::App& app) {
     if (!a->save_model.empty() && !a->learn) throw InputError("--save-model: only with --learn");
     const learning::Model model = learning::load_model(a->model);
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
-                             load_plant_arg(a->sys.plant));
+                             load_plant_arg(a->sys.plant), load_belief_arg(a->sys.belief));
     experiments::check_playable_model(model, a->model, &sys);
     const field::Situations region =
         field::region_from_spec(sys.field(), a->situations_spec, a->balls);

@@ -35,6 +35,7 @@ struct Args {
   bool json = false;
   std::string out;
   std::vector<std::string> models;  ///< FIELD=FILE
+  bool no_revise = false;
   SystemArgs system;
 };
 
@@ -47,6 +48,8 @@ game::RoundOptions round_options(const Args& a) {
   if (!a.models.empty() && o.player != game::Player::kRobot)
     throw InputError("--model: only the robot player plays a learned model");
   o.models = experiments::load_round_models(a.models, "--model");
+  o.belief = load_belief_arg(a.system.belief);
+  o.revise = !a.no_revise;
   o.validate();
   return o;
 }
@@ -75,6 +78,12 @@ void run_round(const Args& a) {
   }
   fmt::print("{} ({}): {} strokes, par {}; {} learning putts, {} imagined putts\n", course.name,
              a.player, r.total_strokes, r.total_par, r.learning_putts, r.imagined_putts);
+  if (r.belief_paths > 0)
+    fmt::print(
+        "  believed green after {} paths: rolling resistance x {:.4f} +- {:.4f}, tilt ({:.2f}, "
+        "{:.2f}) +- ({:.2f}, {:.2f}) mrad\n",
+        r.belief_paths, r.believed_green[0], r.believed_green_std[0], 1e3 * r.believed_green[1],
+        1e3 * r.believed_green[2], 1e3 * r.believed_green_std[1], 1e3 * r.believed_green_std[2]);
   for (std::size_t h = 0; h < r.holes.size(); ++h) {
     const auto& hole = r.holes[h];
     fmt::print("  hole {} {:<16} par {}  strokes {}{}\n", h + 1, hole.field, hole.par, hole.strokes,
@@ -148,6 +157,9 @@ void add_round_command(CLI::App& app) {
   cmd->add_option("--hitting-model", a->system.hitting_model,
                   "Hitting DS model file (default: the shipped one)");
   cmd->add_option("--plant", a->system.plant, kPlantHelp);
+  cmd->add_option("--belief", a->system.belief, kBeliefHelp);
+  cmd->add_flag("--no-revise", a->no_revise,
+                "The robot keeps its belief of the green (no revision from the balls it watches)");
   cmd->add_option("--threads", a->system.threads,
                   "Threads (0: all cores; results do not depend on it)")
       ->check(CLI::Range(0, 256))

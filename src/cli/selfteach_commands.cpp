@@ -80,7 +80,7 @@ void add_self_teach(CLI::App& app) {
     o.arrival_speed = a->arrival;
     o.validate();
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
-                             load_plant_arg(a->sys.plant));
+                             load_plant_arg(a->sys.plant), load_belief_arg(a->sys.belief));
     field::Situations region = field::region_from_spec(sys.field(), a->situations, a->balls);
     if (!a->strategy.empty())
       region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));
@@ -174,7 +174,7 @@ void add_curves(CLI::App& app) {
     a->o.validate();
     check_output_file(a->out);  // before minutes of putts, not after
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
-                             load_plant_arg(a->sys.plant));
+                             load_plant_arg(a->sys.plant), load_belief_arg(a->sys.belief));
     const field::Situations region =
         field::region_from_spec(sys.field(), a->situations_spec, a->balls);
     a->o.teacher = teacher::options_for(region, "");

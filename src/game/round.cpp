@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <random>
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include "core/check.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "game/green_belief.hpp"
 #include "game/lane_region.hpp"
 #include "game/launch.hpp"
 #include "game/skill.hpp"
@@ -106,17 +108,29 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
   RoundResult result;
   result.course = course.name;
   result.player = options.player;
+  std::optional<GreenBelief> green;  // the robot's, revised from what it watches
+  const bool revising = options.player == Player::kRobot && options.revise;
   for (std::size_t h = 0; h < course.holes.size(); ++h) {
     const CourseHole& ch = course.holes[h];
+    if (revising && !green) green.emplace(options.belief, ch.field, options.vision_noise);
+    // The robot's model of this lane: its field file as it now believes it to be.
+    const auto believed = [&] {
+      return std::make_unique<system::System>(
+          config, plant::true_field(ch.field, green ? green->plant() : options.belief));
+    };
+    Rng watch_rng(derive_seed(options.seed, 7000 + h));  // its vision of the paths it watches
+    const auto watch = [&](const std::vector<sim::BallSample>& path) {
+      return green && green->watch(ch.field, ch.field.hole.position, path, watch_rng);
+    };
     HoleWorlds w;
-    w.belief = std::make_unique<system::System>(config, ch.field);
+    w.belief = believed();
     w.truth = std::make_unique<system::System>(config, ch.field, plant);
     w.data = std::make_unique<system::SystemData>(*w.truth);
-    const field::Field& field = w.belief->field();
+    const field::Field& field = ch.field;  // its geometry: the same in every belief
     const auto hole = field.hole.position;
     const auto cup = system::real_hole(*w.truth, hole);  // where the ball really drops
     const LaneRegion region(field, hole);
-    const control::ControllerConfig& mc = w.belief->module().config();
+    const control::ControllerConfig mc = w.belief->module().config();
     const double club_min = mc.speed_min, club_max = std::min(mc.speed_max, mc.arm_speed_cap);
     Rng rng(derive_seed(options.seed, 1000 + h));
     std::normal_distribution<double> normal(0.0, 1.0);
@@ -137,14 +151,17 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         if (options.vision_noise > 0.0)
           o.perceived_ball_offset = {options.vision_noise * normal(rng),
                                      options.vision_noise * normal(rng)};
+        if (revising) o.record_interval = kPathInterval;
         const auto r = system::arm_putt(*w.truth, *w.data, hole, 0.0, club, o);
         if (r.hit_refused || !r.hit) continue;
+        watch(r.outcome.trajectory);
         const ArmLaunch a = arm_launch(field, r.ball_start, r.launch_state);
         skill.add(club, 0.0, a.angle, a.speed, a.club);  // the identity stance: world = robot
         ++result.learning_putts;
       }
       if (skill.size() == 0)
         throw NumericalError(fmt::format("{}: no calibration putt hit the ball", field.name));
+      if (green && green->paths() > 0) w.belief = believed();
     }
     const auto model_it = options.models.find(field.name);
     const HitModel* model =
@@ -265,6 +282,7 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
           // Every stroke played refines the skill (angles in the robot's frame).
           skill.add(club, hitting, std::remainder(a.angle - o.stance.yaw, 2.0 * kPi), a.speed,
                     a.club);
+          if (watch(out.trajectory)) w.belief = believed();
         }
       }
       ++hr.strokes;
@@ -300,6 +318,13 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
       }
       hr.putts.push_back(s);
       if (on_stroke) on_stroke(static_cast<int>(h), hr.putts.back());
+    }
+    if (green) {
+      const auto& b = green->plant().field;
+      result.believed_green = {b.rolling_resistance_scale.value_or(1.0), b.extra_slope[0],
+                               b.extra_slope[1]};
+      result.believed_green_std = green->std();
+      result.belief_paths = green->paths();
     }
     hr.strokes = std::min(hr.strokes, course.max_strokes);
     result.total_strokes += hr.strokes;

@@ -57,6 +57,12 @@ struct RoundOptions {
   /// the robot's model of the field through its launch skill, sinks with at least
   /// `planner.accept_probability` or is expected to take no more strokes than the planner's.
   std::map<std::string, HitModel> models;
+  /// What the robot believes of the world beyond its field files at the start (a plant's keys;
+  /// empty: it believes the files; its green keys are revised, game::GreenBelief).
+  plant::Plant belief;
+  /// The robot revises its belief of the green from every ball it watches (calibration putts and
+  /// strokes) and plans each stroke in it; false: it keeps `belief` (the rounds before revision).
+  bool revise = true;
   PlannerOptions planner;
   void validate() const;
 };
@@ -93,6 +99,11 @@ struct RoundResult {
   int total_par = 0;
   int learning_putts = 0;  ///< the robot's calibration putts, over all fields
   int imagined_putts = 0;  ///< ball-only putts simulated by the planner
+  /// The robot's belief of the green at the end (RoundOptions::revise): rolling resistance scale
+  /// and tilt (dz/dx, dz/dy), their std, and the paths it was revised from.
+  std::array<double, 3> believed_green{1.0, 0.0, 0.0};
+  std::array<double, 3> believed_green_std{0.0, 0.0, 0.0};
+  int belief_paths = 0;
 };
 
 /// Plays `course` on `plant` (the true world; empty: the field files). `config` is the module

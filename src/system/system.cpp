@@ -38,13 +38,19 @@ control::ModuleConfig load_config(const std::string& config_path, const std::str
   return config;
 }
 
-System::System(const control::ModuleConfig& config, plant::Plant plant)
-    : System(config, field::load_field(config.field), std::move(plant)) {}
+System::System(const control::ModuleConfig& config, plant::Plant plant, plant::Plant belief)
+    : System(config, field::load_field(config.field), std::move(plant), std::move(belief)) {}
 
-System::System(const control::ModuleConfig& config, field::Field field, plant::Plant plant)
-    : config_(config), belief_(std::move(field)), plant_(std::move(plant)) {
+System::System(const control::ModuleConfig& config, field::Field field, plant::Plant plant,
+               plant::Plant belief)
+    : config_(config),
+      survey_(std::move(field)),
+      belief_plant_(std::move(belief)),
+      belief_(plant::true_field(survey_, belief_plant_)),
+      plant_(std::move(plant)) {
   config_.validate();
   plant_.validate();
+  belief_plant_.validate();
   config_.hitting_model = resolve_data_path(config_.hitting_model).string();
   ds::HittingModel hitting = ds::read_hitting_model(config_.hitting_model);
   // The robot's mount (its model of itself) and the real one: friction and club face.
@@ -56,7 +62,7 @@ System::System(const control::ModuleConfig& config, field::Field field, plant::P
         std::min(0.99, belief_mount.club.face_restitution * plant_.arm.club_restitution_scale);
   true_mount_ = true_mount;
   arm_world_ = std::make_unique<sim::World>(
-      control::make_world_with_arm(plant::true_field(belief_, plant_), true_mount));
+      control::make_world_with_arm(plant::true_field(survey_, plant_), true_mount));
   ball_world_ = std::make_unique<sim::World>(control::make_ball_world(*arm_world_));
   // The module's model reads the arm's kinematics and inertia (the same in both mounts) and the
   // ball's radius from the world, and the robot's own mount: never the plant.

@@ -41,15 +41,24 @@ class System {
  public:
   /// Loads the field (config.field) and the hitting model, builds both worlds and the module.
   /// Throws InputError/IoError for a bad configuration or file.
-  explicit System(const control::ModuleConfig& config, plant::Plant plant = {});
+  /// `belief`: the robot's estimate of how the world differs from its field file, in a plant's
+  /// keys (docs/belief.md); field() is the field file with it applied. Empty: it believes the
+  /// file (the same bits as without one).
+  explicit System(const control::ModuleConfig& config, plant::Plant plant = {},
+                  plant::Plant belief = {});
   /// The same with an already loaded field (config.field is then only a label).
-  System(const control::ModuleConfig& config, field::Field field, plant::Plant plant = {});
+  System(const control::ModuleConfig& config, field::Field field, plant::Plant plant = {},
+         plant::Plant belief = {});
   System(const System&) = delete;
   System& operator=(const System&) = delete;
 
   const control::ModuleConfig& config() const { return config_; }
-  /// The field as the robot believes it is (its field file).
+  /// The field as the robot believes it is (its field file, with its belief applied).
   const field::Field& field() const { return belief_; }
+  /// The field file as surveyed (the belief and the plant both apply to it).
+  const field::Field& survey() const { return survey_; }
+  /// What the robot believes of the world beyond its field file (empty: nothing).
+  const plant::Plant& belief() const { return belief_plant_; }
   /// The world as it is: the oracle and the world builder may read it, the robot may not.
   const plant::Plant& plant() const { return plant_; }
   const sim::World& arm_world() const { return *arm_world_; }  ///< true field + WAM + club
@@ -70,6 +79,8 @@ class System {
 
  private:
   control::ModuleConfig config_;
+  field::Field survey_;
+  plant::Plant belief_plant_;
   field::Field belief_;
   plant::Plant plant_;
   std::unique_ptr<sim::World> arm_world_;
