@@ -77,8 +77,9 @@ TEST(BankShots, OneBounceFollowsTheReboundLaw) {
   // One bounce first, each kind shortest first.
   for (std::size_t k = 1; k < banks.size(); ++k) {
     EXPECT_LE(banks[k - 1].bounces, banks[k].bounces);
-    if (banks[k - 1].bounces == banks[k].bounces)
+    if (banks[k - 1].bounces == banks[k].bounces) {
       EXPECT_LE(banks[k - 1].path_length, banks[k].path_length);
+    }
   }
   // The prior speed pays for the longer path and the bounce: more than the straight roll's.
   const double direct = 7.0 / 5.0 * std::sqrt(0.16 + 2.0 * 5.0 / 7.0 * 0.1 * 9.81 * 2.0);
