@@ -36,10 +36,10 @@ double energy(const sim::World& world, const mjData* d) {
 
 struct Row {
   int putts = 0, impacts = 0, gains = 0;
-  double worst_gain = 0.0;                   // [J]
-  double worst_relative_gain = 0.0;          // [-]
+  double worst_gain = 0.0;                    // [J]
+  double worst_relative_gain = 0.0;           // [-]
   double rise_played = 0.0, rise_fast = 0.0;  // [m] launches <= 4 m/s, faster
-  double fastest_impact = 0.0;               // [m/s]
+  double fastest_impact = 0.0;                // [m/s]
   double seconds = 0.0;
 };
 
@@ -121,8 +121,8 @@ int main(int argc, char** argv) {
   for (const auto& name : fields) {
     const Row r = run(name, putts, seed);
     std::printf("| %s | %d | %d | %.2f | %d | %.2g (%.2g) | %.2f / %.2f | %.0f |\n", name.c_str(),
-                r.putts, r.impacts, r.fastest_impact, r.gains, r.worst_gain,
-                r.worst_relative_gain, 1e3 * r.rise_played, 1e3 * r.rise_fast, r.seconds);
+                r.putts, r.impacts, r.fastest_impact, r.gains, r.worst_gain, r.worst_relative_gain,
+                1e3 * r.rise_played, 1e3 * r.rise_fast, r.seconds);
     std::fflush(stdout);
   }
   return 0;
