@@ -33,9 +33,11 @@ struct IdentifyHit {
 };
 
 /// The robot's plan: `putts` hits from the tee (or from balls drawn from `balls`, a region spec
-/// as `--balls`; seeded by `seed`), alternating across the lane (targets near the far end,
-/// left and right, wide and narrow) and between a short and a long roll, so that rolling
-/// resistance and both slope components separate. Deterministic. Throws InputError.
+/// as `--balls`; seeded by `seed`), along the lane the longer way (from a ball with a metre of
+/// lane both ways, both ways in turn), alternating left and right of
+/// its axis, wide (0.5-0.7 rad) and narrow (0.06-0.18 rad), and between a short and a long roll,
+/// so that rolling resistance and both slope components separate. Deterministic. Throws
+/// InputError.
 std::vector<IdentifyHit> plan_identification(const system::System& own, int putts,
                                              const std::string& balls, std::uint64_t seed);
 
