@@ -210,6 +210,10 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
   b.std.field.rolling_resistance = file_std(id.green.std[0]);
   if (*b.std.field.rolling_resistance == 0.0) b.std.field.rolling_resistance.reset();
   b.std.field.extra_slope = {file_std(id.green.std[1]), file_std(id.green.std[2])};
+  // The vision's error per axis: the paths' residual (the model's own error is ~0.01 mm).
+  b.estimate.perception.noise = std::min(id.green.rms_residual, 0.05);
+  b.std.perception.noise =
+      file_std(id.green.rms_residual / std::sqrt(2.0 * std::max(1, id.green.samples_used)));
   b.putts = (prior ? prior->putts : 0) + static_cast<int>(n);
 
   // The robot's own model of each hit: its arm on the lane it now believes in.

@@ -67,7 +67,8 @@ belief::GreenPrior green_prior(const field::Field& surveyed,
 /// the arm, predicting each hit in the robot's own model (`config`'s arm and hitting model on
 /// the believed lane, no plant). Arm keys of `prior` with a std are combined with the fit
 /// (inverse variances); the hole offset and sliding friction are the prior's (not identified
-/// from paths). Throws NumericalError when no path rolls long enough.
+/// from paths); the vision's noise is the green fit's rms residual. Throws NumericalError when
+/// no path rolls long enough.
 Identification identify_belief(const control::ModuleConfig& config, const field::Field& surveyed,
                                const std::vector<IdentifyHit>& hits, std::size_t n,
                                const std::optional<belief::Belief>& prior);
