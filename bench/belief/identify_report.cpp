@@ -61,8 +61,9 @@ std::vector<std::array<double, 2>> effective_arm(const control::ModuleConfig& co
     const double asked =
         std::clamp(h.speed * plant.arm.club_speed_scale, config.speed_min, config.speed_max);
     const auto ms = system::arm_hit(own, od, h.situation, h.angle, asked);
-    out.push_back({t.hit && m.hit ? t.club.speed / m.club.speed : NAN,
-                   t.hit && ms.hit ? t.launch.angle - ms.launch.angle : NAN});
+    out.push_back(
+        {t.hit && m.hit ? t.club.speed / m.club.speed : NAN,
+         t.hit && ms.hit ? std::remainder(t.launch.angle - ms.launch.angle, 2.0 * M_PI) : NAN});
   }
   return out;
 }
