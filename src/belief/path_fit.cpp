@@ -28,7 +28,7 @@ constexpr double kSolimpMin = 0.9, kSolimpMax = 0.95, kSolimpWidth = 0.001;
 constexpr double kContactTime = 0.02;
 constexpr double kContactStiffness = 1.0 / (kSolimpMax * kSolimpMax * kContactTime * kContactTime);
 constexpr double kContactDamping = 2.0 / (kSolimpMax * kContactTime);
-constexpr double kGroundSink = 3.7e-4;
+constexpr double kGroundSink = 3.7e-4;  ///< [m] (the start of the settling iteration)
 /// [m/s] The world's rolling resistance acts fully while the contact slips slower than half its
 /// rolling_slip_limit (0.05 m/s, sim::WorldOptions), and the slip is measured at the ball's
 /// radius, not at the lever: a rolling ball "slips" by v (r / lever - 1), 0.9 % of its speed at
@@ -323,7 +323,7 @@ class ContactFilter {
   /// Settled under the demand `normal` [m/s^2].
   explicit ContactFilter(double normal) {
     for (int it = 0; it < 20; ++it) {
-      const double imp = impedance(e_);
+      const double imp = RollModel::impedance(e_);
       e_ = -(normal / imp - kGravity) / (kContactStiffness * imp);
     }
     e_ = std::min(e_, 0.0);
@@ -346,14 +346,9 @@ class ContactFilter {
   }
 
  private:
-  static double impedance(double e) {
-    const double x = std::min(1.0, std::abs(e) / kSolimpWidth);
-    const double y = x <= 0.5 ? 2.0 * x * x : 1.0 - 2.0 * (1.0 - x) * (1.0 - x);
-    return kSolimpMin + y * (kSolimpMax - kSolimpMin);
-  }
   double force(double gravity_normal) const {
     if (e_ >= 0.0) return 0.0;
-    const double imp = impedance(e_);
+    const double imp = RollModel::impedance(e_);
     return std::max(0.0,
                     imp * (-kContactDamping * de_ - kContactStiffness * imp * e_ + gravity_normal));
   }

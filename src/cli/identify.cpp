@@ -91,7 +91,15 @@ std::vector<IdentifyHit> plan_identification(const system::System& own, int putt
     const double side = k % 2 == 0 ? 1.0 : -1.0;
     const bool wide = cycle % 2 == 0;
     const bool long_roll = (k + cycle) % 2 == 0;
-    const double axis = std::atan2(0.5 * (b[2] + b[3]) - ball[1], b[1] - ball[0]);
+    // Along the lane the longer way, and from a ball with a metre of lane both ways, every
+    // other pair of putts the other way: rolls both ways part rolling resistance from the slope
+    // along the lane (it slows one and speeds the other), which from the tee only the wide
+    // putts' bends tell apart.
+    const bool forward = ball[0] <= 0.5 * (b[0] + b[1]);
+    const bool both_ways = std::min(b[1] - ball[0], ball[0] - b[0]) >= 1.0;
+    const bool flip = both_ways && (k / 2 + k / 4) % 2 == 1;
+    const double end = forward != flip ? b[1] : b[0];
+    const double axis = std::atan2(0.5 * (b[2] + b[3]) - ball[1], end - ball[0]);
     const auto variant = static_cast<std::size_t>(k / 4 % 3);
     const double angle = axis + side * (wide ? kWideAngles[variant] : kNarrowAngles[variant]);
     // How far the ball can roll that way: to 0.1 m before a border.
@@ -202,6 +210,10 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
   b.std.field.rolling_resistance = file_std(id.green.std[0]);
   if (*b.std.field.rolling_resistance == 0.0) b.std.field.rolling_resistance.reset();
   b.std.field.extra_slope = {file_std(id.green.std[1]), file_std(id.green.std[2])};
+  // The vision's error per axis: the paths' residual (the model's own error is ~0.01 mm).
+  b.estimate.perception.noise = std::min(id.green.rms_residual, 0.05);
+  b.std.perception.noise =
+      file_std(id.green.rms_residual / std::sqrt(2.0 * std::max(1, id.green.samples_used)));
   b.putts = (prior ? prior->putts : 0) + static_cast<int>(n);
 
   // The robot's own model of each hit: its arm on the lane it now believes in.

@@ -33,9 +33,11 @@ struct IdentifyHit {
 };
 
 /// The robot's plan: `putts` hits from the tee (or from balls drawn from `balls`, a region spec
-/// as `--balls`; seeded by `seed`), alternating across the lane (targets near the far end,
-/// left and right, wide and narrow) and between a short and a long roll, so that rolling
-/// resistance and both slope components separate. Deterministic. Throws InputError.
+/// as `--balls`; seeded by `seed`), along the lane the longer way (from a ball with a metre of
+/// lane both ways, both ways in turn), alternating left and right of
+/// its axis, wide (0.5-0.7 rad) and narrow (0.06-0.18 rad), and between a short and a long roll,
+/// so that rolling resistance and both slope components separate. Deterministic. Throws
+/// InputError.
 std::vector<IdentifyHit> plan_identification(const system::System& own, int putts,
                                              const std::string& balls, std::uint64_t seed);
 
@@ -65,7 +67,8 @@ belief::GreenPrior green_prior(const field::Field& surveyed,
 /// the arm, predicting each hit in the robot's own model (`config`'s arm and hitting model on
 /// the believed lane, no plant). Arm keys of `prior` with a std are combined with the fit
 /// (inverse variances); the hole offset and sliding friction are the prior's (not identified
-/// from paths). Throws NumericalError when no path rolls long enough.
+/// from paths); the vision's noise is the green fit's rms residual. Throws NumericalError when
+/// no path rolls long enough.
 Identification identify_belief(const control::ModuleConfig& config, const field::Field& surveyed,
                                const std::vector<IdentifyHit>& hits, std::size_t n,
                                const std::optional<belief::Belief>& prior);

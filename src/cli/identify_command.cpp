@@ -81,6 +81,8 @@ void print_table(const system::System& truth, const std::vector<IdentifyHit>& hi
       s.field.hole_offset[0] > 0.0 || s.field.hole_offset[1] > 0.0
           ? fmt::format("[{}, {}]", s.field.hole_offset[0], s.field.hole_offset[1])
           : std::string("unknown"));
+  fmt::print("  {:<26} {:>12.5f} {:>12} {:>12.5f}\n", "perception.noise [m]", e.perception.noise,
+             std_text(s.perception.noise, 5), before.perception.noise);
   fmt::print("  field.sliding_friction     {:.4f}: not identified (the survey's or the prior's)\n",
              plant::true_sliding_friction(f, e));
   fmt::print(
