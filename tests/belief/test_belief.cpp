@@ -36,9 +36,12 @@ std:
 putts: 5
 )";
 
+// Errors of a belief file: `yaml` after its version line (a list or broken YAML as it stands).
 std::string error_of(const std::string& yaml) {
+  const bool versioned = yaml.rfind("- ", 0) != 0 && yaml.find("{extra_slope: [0, 0.001]\n") ==
+                                                          std::string::npos;
   try {
-    parse_belief(yaml, "b.yaml");
+    parse_belief(versioned ? "format_version: 1\n" + yaml : yaml, "b.yaml");
   } catch (const InputError& e) {
     return e.what();
   }
@@ -73,7 +76,7 @@ TEST(Belief, APlantFileIsABeliefWithoutUncertainty) {
   EXPECT_DOUBLE_EQ(b.estimate.arm.launch_angle_bias, 0.001);
   EXPECT_EQ(b.putts, 0);
   EXPECT_EQ(b.std.arm.launch_angle_bias, 0.0);
-  EXPECT_TRUE(parse_belief("", "e.yaml").estimate.empty());
+  EXPECT_THROW(parse_belief("", "e.yaml"), InputError);  // a version is required, as for plants
 }
 
 TEST(Belief, RoundTripsThroughItsText) {
@@ -94,7 +97,7 @@ TEST(Belief, RoundTripsThroughItsText) {
 TEST(Belief, JsonGivesAbsoluteResistanceAndEveryKey) {
   const field::Field f = field::load_field("flat");
   Belief b = parse_belief(
-      "field: {rolling_resistance_scale: 1.1}\nstd: {field: "
+      "format_version: 1\nfield: {rolling_resistance_scale: 1.1}\nstd: {field: "
       "{rolling_resistance_scale: 0.01}}\nputts: 3\n",
       "b.yaml");
   const auto j = belief_to_json(b, f);
