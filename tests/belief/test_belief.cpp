@@ -38,8 +38,8 @@ putts: 5
 
 // Errors of a belief file: `yaml` after its version line (a list or broken YAML as it stands).
 std::string error_of(const std::string& yaml) {
-  const bool versioned = yaml.rfind("- ", 0) != 0 && yaml.find("{extra_slope: [0, 0.001]\n") ==
-                                                          std::string::npos;
+  const bool versioned =
+      yaml.rfind("- ", 0) != 0 && yaml.find("{extra_slope: [0, 0.001]\n") == std::string::npos;
   try {
     parse_belief(versioned ? "format_version: 1\n" + yaml : yaml, "b.yaml");
   } catch (const InputError& e) {
