@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "belief/belief.hpp"
 #include "experiments/collect.hpp"
 #include "experiments/evaluate.hpp"
 #include "experiments/sweep.hpp"
@@ -139,7 +140,7 @@ void bind_system(py::module_& m) {
       "world, the hitting model and the control module. Immutable; shared by threads.")
       .def(py::init([](const std::string& field, const std::string& config,
                        const std::string& hitting_model, const std::string& plant,
-                       std::optional<py::bytes> plant_text) {
+                       std::optional<py::bytes> plant_text, const std::string& belief) {
              if (plant_text && plant.empty())
                throw InputError("plant_text: needs plant (the name its errors and hash carry)");
              // Held as a std::string before the GIL is released.
@@ -151,15 +152,19 @@ void bind_system(py::module_& m) {
                p = plant::parse_plant(*text, plant);
              else if (!plant.empty())
                p = plant::load_plant(plant);
+             plant::Plant b =
+                 belief.empty() ? plant::Plant{} : belief::load_belief(belief).estimate;
              return std::make_unique<system::System>(
-                 system::load_config(config, field, hitting_model), std::move(p));
+                 system::load_config(config, field, hitting_model), std::move(p), std::move(b));
            }),
            py::arg("field") = "flat", py::arg("config") = "", py::arg("hitting_model") = "",
-           py::arg("plant") = "", py::arg("plant_text") = py::none(),
+           py::arg("plant") = "", py::arg("plant_text") = py::none(), py::arg("belief") = "",
            "field: shipped name or path; config: module YAML (empty: defaults); hitting_model: DS "
            "model file (empty: the configured default); plant: plant file, the world as it "
            "really is (docs/reality.md; empty: the robot's model); plant_text: the plant file's "
-           "bytes, read earlier (read_plant_file), parsed instead of reading `plant` again")
+           "bytes, read earlier (read_plant_file), parsed instead of reading `plant` again; "
+           "belief: belief file, what the robot believes beyond its field file (docs/belief.md; "
+           "`field` is then the field file with it applied)")
       .def_property_readonly(
           "plant",
           [](const system::System& s) -> py::object {

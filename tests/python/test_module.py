@@ -359,6 +359,18 @@ def test_a_system_data_of_another_system_is_refused(flat):
     assert bank.putt(0.01, 1.5, data=bank.make_data()).end  # its own data plays
 
 
+def test_a_belief_is_the_field_file_as_the_robot_believes_it(tmp_path, flat):
+    belief = tmp_path / "belief.yaml"
+    belief.write_text("format_version: 1\nfield: {rolling_resistance_scale: 1.1}\n"
+                      "std: {field: {rolling_resistance_scale: 0.01}}\nputts: 5\n")
+    s = minigolf.System(field="flat", belief=str(belief))
+    assert s.field.rolling_resistance == pytest.approx(1.1 * flat.field.rolling_resistance)
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("format_version: 1\nfield: {grass: 2}\n")
+    with pytest.raises(ValueError, match="grass"):
+        minigolf.System(field="flat", belief=str(bad))
+
+
 def test_a_mujoco_error_never_waits_for_enter(tmp_path):
     """Issue 38, item 2: with stdin open, MuJoCo's own handler printed 'Press Enter to exit' and
     waited; the module's handler prints one line and ends the interpreter at once."""
