@@ -1,10 +1,18 @@
 #include "game/green_belief.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "core/error.hpp"
 
 namespace mg::game {
+namespace {
+
+constexpr double kMinScale = 0.5, kMaxScale = 2.0;  // rolling resistance x the survey's
+constexpr double kMaxTilt = 0.05;                   // [-] dz/dx, dz/dy
+
+}  // namespace
 
 GreenBelief::GreenBelief(const plant::Plant& initial, const field::Field& survey,
                          double vision_noise)
@@ -49,9 +57,17 @@ bool GreenBelief::watch(const field::Field& survey, std::array<double, 2> hole,
     f.paths.pop_back();
     return false;
   }
+  const double scale = e.rolling_resistance / rho;
+  if (!std::isfinite(scale) || !std::isfinite(e.extra_slope[0]) ||
+      !std::isfinite(e.extra_slope[1])) {
+    f.paths.pop_back();
+    return false;
+  }
   ++paths_;
-  belief_.field.rolling_resistance_scale = e.rolling_resistance / rho;
-  belief_.field.extra_slope = e.extra_slope;
+  // Within what a green can be (and a plant file may say): a wild fit never breaks the round.
+  belief_.field.rolling_resistance_scale = std::clamp(scale, kMinScale, kMaxScale);
+  belief_.field.extra_slope = {std::clamp(e.extra_slope[0], -kMaxTilt, kMaxTilt),
+                               std::clamp(e.extra_slope[1], -kMaxTilt, kMaxTilt)};
   std_ = {e.std[0] / rho, e.std[1], e.std[2]};
   return true;
 }
