@@ -39,7 +39,8 @@ TEST(GreenBelief, LearnsASlowerTiltedGreenFromThePathsItWatches) {
   GreenBelief belief({}, survey, 0.0005);
   EXPECT_FALSE(belief.plant().field.rolling_resistance_scale.has_value());  // the survey at first
   Rng rng(4);
-  for (const auto& path : paths_on(survey, truth)) EXPECT_TRUE(belief.watch(survey, survey.hole.position, path, rng));
+  for (const auto& path : paths_on(survey, truth))
+    EXPECT_TRUE(belief.watch(survey, survey.hole.position, path, rng));
   EXPECT_EQ(belief.paths(), 5);
   const auto& b = belief.plant().field;
   ASSERT_TRUE(b.rolling_resistance_scale.has_value());
@@ -51,7 +52,8 @@ TEST(GreenBelief, LearnsASlowerTiltedGreenFromThePathsItWatches) {
   // The same paths and the same vision seed: the same bits.
   GreenBelief again({}, survey, 0.0005);
   Rng rng2(4);
-  for (const auto& path : paths_on(survey, truth)) again.watch(survey, survey.hole.position, path, rng2);
+  for (const auto& path : paths_on(survey, truth))
+    again.watch(survey, survey.hole.position, path, rng2);
   EXPECT_EQ(*again.plant().field.rolling_resistance_scale, *b.rolling_resistance_scale);
   EXPECT_EQ(again.plant().field.extra_slope, b.extra_slope);
 
