@@ -1,5 +1,5 @@
 #pragma once
-/// Identification of the arm from what it measures (issue 35; docs/belief.md): the club speed
+/// Identification of the arm from what it measures (docs/belief.md): the club speed
 /// it reached against the one its own model reaches for the same command (plant key
 /// `club_speed_scale`), and the ball's launch direction seen in the perceived path against the
 /// one its own model gives the same hit (`launch_angle_bias`). Free functions over numbers: the

@@ -1,5 +1,5 @@
 #pragma once
-/// The belief: the robot's estimate of the world and its uncertainty (issue 35; docs/belief.md).
+/// The belief: the robot's estimate of the world and its uncertainty (docs/belief.md).
 ///
 /// A plant (src/plant) is the world as it really is; a belief is what the robot thinks it is,
 /// in the plant file's own terms, so that anything that can apply a plant can apply a belief.

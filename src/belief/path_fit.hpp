@@ -1,5 +1,5 @@
 #pragma once
-/// Identification of the green from observed ball paths (issue 35; docs/belief.md).
+/// Identification of the green from observed ball paths (docs/belief.md).
 ///
 /// The rolling ball is a point on the lane as the robot surveyed it plus an unknown tilt
 /// (plant key `extra_slope`), slowed by Penner's rolling resistance rho (`rolling_resistance`).

@@ -8,7 +8,7 @@
 
 namespace mg::control {
 
-/// Where ball/hole come from and which safety policy applies (ARCHITECTURE.md "Runtime modes").
+/// Where ball/hole come from and which safety policy applies (docs/control.md).
 enum class ModuleMode {
   kSimulator,  ///< world state from the simulation; full speed envelope
   kNormal,     ///< real-arm policy: end-point speed capped at robot::kSafeEndpointSpeed, slower IK

@@ -1,5 +1,5 @@
 #pragma once
-/// The "real-robot rows" of `minigolf reproduce` (issue 18; thesis table 6.5's real-robot rows):
+/// The "real-robot rows" of `minigolf reproduce` (thesis table 6.5's real-robot rows):
 /// on the thesis's real-robot fields a documented plant (data/plants/real-wam.yaml) stands in for
 /// the real WAM. Rows: the nominal-simulator model on 10 test situations there, then the same
 /// model adapted by 10 of the robot's own putts (self-teach --prior), beside the plant's oracle

@@ -1,6 +1,6 @@
 #pragma once
 /// The plant: how the world really is, where it differs from what the robot believes
-/// (ARCHITECTURE.md "Belief and truth"; docs/reality.md).
+/// (docs/reality.md, docs/architecture.md).
 ///
 /// The robot's knowledge is its field file, arm and hitting models and learned models. A plant
 /// file says how the simulated world that putts happen in differs: grass, a tilt the survey

@@ -1,5 +1,5 @@
 #pragma once
-/// Noise-aware putting (issue 10): choose the putt that maximises the probability of sinking under
+/// Noise-aware putting (docs/selfteach.md): choose the putt that maximises the probability of sinking under
 /// the measured noise rather than the mean prediction.
 ///
 /// The choice the self-teacher can make is the arrival speed s* it learns to reach the hole with
