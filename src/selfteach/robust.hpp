@@ -1,6 +1,6 @@
 #pragma once
-/// Noise-aware putting (docs/selfteach.md): choose the putt that maximises the probability of sinking under
-/// the measured noise rather than the mean prediction.
+/// Noise-aware putting (docs/selfteach.md): choose the putt that maximises the probability of
+/// sinking under the measured noise rather than the mean prediction.
 ///
 /// The choice the self-teacher can make is the arrival speed s* it learns to reach the hole with
 /// (the aim stays at the hole's centre: the noise is symmetric about it). A fast arrival survives

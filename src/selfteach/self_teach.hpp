@@ -1,6 +1,6 @@
 #pragma once
-/// The robot teaches itself (beyond thesis chapter 7; docs/selfteach.md): no teacher, no data set. It
-/// chooses its own putts on the full system, learns from every outcome, misses included, and
+/// The robot teaches itself (beyond thesis chapter 7; docs/selfteach.md): no teacher, no data set.
+/// It chooses its own putts on the full system, learns from every outcome, misses included, and
 /// stops after a budget of full-system putts.
 ///
 /// Each round:
