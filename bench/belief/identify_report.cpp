@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "belief/belief.hpp"
-#include "cli/identify.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
+#include "experiments/identify.hpp"
 #include "plant/plant.hpp"
 #include "system/system.hpp"
 
@@ -46,16 +46,16 @@ double worst(const std::vector<double>& v) { return *std::max_element(v.begin(),
 /// launch angle minus the model's at the command times the plant's club speed scale (as the real
 /// arm is asked for it). With joint friction both depend on the hit (its angle and speed): the
 /// truth a constant bias and scale can be held to is their mean over the hits identified from.
-std::vector<std::array<double, 2>> effective_arm(const control::ModuleConfig& config,
-                                                 const field::Field& field, plant::Plant plant,
-                                                 const std::vector<cli::IdentifyHit>& hits) {
+std::vector<std::array<double, 2>> effective_arm(
+    const control::ModuleConfig& config, const field::Field& field, plant::Plant plant,
+    const std::vector<experiments::IdentifyHit>& hits) {
   plant.arm.torque_noise = 0.0;
   plant.perception.noise = 0.0;
   const system::System truth(config, field, plant);
   const system::System own(config, plant::true_field(field, plant));
   system::SystemData td(truth), od(own);
   std::vector<std::array<double, 2>> out;
-  for (const cli::IdentifyHit& h : hits) {
+  for (const experiments::IdentifyHit& h : hits) {
     const auto t = system::arm_hit(truth, td, h.situation, h.angle, h.speed);
     const auto m = system::arm_hit(own, od, h.situation, h.angle, h.speed);
     const double asked =
@@ -127,14 +127,16 @@ int main(int argc, char** argv) {
           p == 0 ? stand_in : plant::random_plant(static_cast<std::uint64_t>(p));
       const system::System truth(config, plant);
       const field::Field& surveyed = truth.field();
-      auto hits = cli::plan_identification(truth, putts, balls, static_cast<std::uint64_t>(p));
-      cli::play_identification(truth, hits, plant.perception.noise, static_cast<std::uint64_t>(p));
+      auto hits =
+          experiments::plan_identification(truth, putts, balls, static_cast<std::uint64_t>(p));
+      experiments::play_identification(truth, hits, plant.perception.noise,
+                                       static_cast<std::uint64_t>(p));
       const auto eff = effective_arm(config, surveyed, plant, hits);
       const double rho = plant::true_rolling_resistance(surveyed, plant);
       for (std::size_t c = 0; c < counts.size(); ++c) {
         Errors e;
         try {
-          const cli::Identification id = cli::identify_belief(
+          const experiments::Identification id = experiments::identify_belief(
               config, surveyed, hits, static_cast<std::size_t>(counts[c]), std::nullopt);
           const plant::Plant& b = id.belief.estimate;
           e.rho = 100.0 * std::abs(*b.field.rolling_resistance / rho - 1.0);

@@ -15,13 +15,16 @@
 #include "belief/belief.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
-#include "cli/identify.hpp"
 #include "cli/progress.hpp"
 #include "core/io.hpp"
+#include "experiments/identify.hpp"
 #include "system/system.hpp"
 
 namespace mg::cli {
 namespace {
+
+using experiments::Identification;
+using experiments::IdentifyHit;
 
 std::string std_text(double v, int precision) {
   return v > 0.0 ? fmt::format("{:.{}f}", v, precision) : std::string("-");
@@ -142,13 +145,15 @@ void add_identify_command(CLI::App& app) {
     const system::System truth(config, plant);
     const field::Field& surveyed = truth.field();
     if (prior) (void)belief::believed_field(surveyed, *prior);  // applies to this field
-    std::vector<IdentifyHit> hits = plan_identification(truth, a->putts, a->balls, a->seed);
+    std::vector<IdentifyHit> hits =
+        experiments::plan_identification(truth, a->putts, a->balls, a->seed);
 
     Progress bar("identify", a->putts);
-    play_identification(truth, hits, plant.perception.noise, a->seed,
-                        [&bar](int done) { bar.update(done); });
+    experiments::play_identification(truth, hits, plant.perception.noise, a->seed,
+                                     [&bar](int done) { bar.update(done); });
     bar.finish();
-    const Identification id = identify_belief(config, surveyed, hits, hits.size(), prior);
+    const Identification id =
+        experiments::identify_belief(config, surveyed, hits, hits.size(), prior);
     if (!a->out.empty()) write_file_atomic(a->out, belief::belief_to_yaml(id.belief));
     if (a->json) {
       fmt::print("{}\n", belief::belief_to_json(id.belief, surveyed).dump(2));

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "belief/prior.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
@@ -150,7 +151,13 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
   return evaluate_policy(
       system,
       [&](const std::vector<field::Situation>& situations) {
-        return predict_hits(model, system.field(), situations);
+        auto hits = predict_hits(model, system.field(), situations);
+        // A fixed speed is one the model learned on the surveyed green: played as the arrival
+        // speed it gave there (the same bits without a belief).
+        if (const double* fixed = model.fixed_value("speed"))
+          for (std::size_t i = 0; i < hits.size(); ++i)
+            hits[i].speed = system::believed_fixed_speed(system, situations[i], *fixed);
+        return hits;
       },
       region, options, progress);
 }
@@ -203,8 +210,14 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
           r.outcome = p.outcome;
         }
         if (options.oracle) {
+          // The oracle knows the world: an angle-only teacher hits at the club speed that
+          // arrives there as the fixed speed arrived on the surveyed green.
+          teacher::TeacherOptions oracle = options.teacher;
+          if (!oracle.learn_speed)
+            oracle.fixed_speed =
+                system::true_fixed_speed(system, {r.ball, r.hole}, oracle.fixed_speed);
           const teacher::Example ex =
-              teacher::teach(system, data, field::Situation{r.ball, r.hole}, options.teacher);
+              teacher::teach(system, data, field::Situation{r.ball, r.hole}, oracle);
           r.oracle_found = ex.found;
           r.oracle_full_putts = ex.full_putts;
           r.oracle_ball_putts = ex.ball_putts;
@@ -243,7 +256,7 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
   rules.arrival_speed = teacher::arrival_speed(field, options.teacher.strategy);
   const double margin = selfteach::label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
-  const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
+  const double rolling_decel = belief::rolling_deceleration(field);
   const auto situations = region.sample_situations(field, options.situations, options.seed);
   check_plant_holes(system, situations);
   selfteach::Planner planner(system, region, rules.arrival_speed, options.seed,
@@ -322,7 +335,7 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
   rules.arrival_speed = teacher::arrival_speed(field, options.teacher.strategy);
   const double margin = selfteach::label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
-  const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
+  const double rolling_decel = belief::rolling_deceleration(field);
   const auto situations = region.sample_situations(field, options.situations, options.seed);
   check_plant_holes(system, situations);
 
@@ -342,6 +355,8 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
     r.hole = s.hole;
     r.ball = s.ball;
     r.predicted = predict_hits(out.learned, field, std::vector<field::Situation>{s})[0];
+    if (const double* fixed = out.learned.fixed_value("speed"))
+      r.predicted.speed = system::believed_fixed_speed(system, s, *fixed);
     const double a = r.predicted.angle, v = r.predicted.speed;
     r.in_envelope = system::hit_reachable(system, a, v);
     int added = 0;

@@ -1,9 +1,11 @@
 #pragma once
 /// The "real-robot rows" of `minigolf reproduce` (thesis table 6.5's real-robot rows):
 /// on the thesis's real-robot fields a documented plant (data/plants/real-wam.yaml) stands in for
-/// the real WAM. Rows: the nominal-simulator model on 10 test situations there, then the same
-/// model adapted by 10 of the robot's own putts (self-teach --prior), beside the plant's oracle
-/// ceiling; and the adaptation curves over random plants (experiments/adaptation.hpp).
+/// the real WAM. Rows: the nominal-simulator model on 10 test situations there; the same model
+/// after 10 of the robot's own putts, once as a residual over it in the survey's world
+/// (self-teach --prior, the belief never revised) and once with the belief revised from the first
+/// 3 (identify) and the residual from the other 7, played in that belief; beside the plant's
+/// oracle ceiling. Then the adaptation curves over random plants (experiments/adaptation.hpp).
 #include <functional>
 #include <map>
 #include <string>
@@ -22,6 +24,8 @@ struct RealRobotOptions {
   plant::Plant plant;  ///< the stand-in for the real arm and lane
   int attempts = 10;   ///< the thesis's real-robot attempt count
   int adaptation_putts = 10;
+  /// Of the adaptation putts, those the revised rows spend identifying the belief first.
+  int identify_putts = 3;
   /// The thesis's real-robot success ratio of (field, method), NaN if none.
   std::function<double(const std::string&, const std::string&)> thesis;
   std::function<std::string(const std::string&)> csv_path;

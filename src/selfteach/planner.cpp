@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "belief/prior.hpp"
 #include "core/error.hpp"
 #include "selfteach/self_teach.hpp"
 #include "teacher/bank_shots.hpp"
@@ -194,7 +195,7 @@ Label Planner::pseudo_label(const PuttRecord& p, int index) const {
   l.speed = p.speed;
   l.putt = index;
   if (region_.learn_speed) {
-    const double a_roll = 5.0 / 7.0 * f.rolling_resistance * 9.81;
+    const double a_roll = belief::rolling_deceleration(f);
     const double e =
         p.approach_speed * p.approach_speed - 2.0 * a_roll * std::max(0.0, p.approach_along);
     const double rolling_per_club = 5.0 / 7.0 * ratio_;  // ball rolling speed per club speed
@@ -207,17 +208,25 @@ Label Planner::pseudo_label(const PuttRecord& p, int index) const {
 }
 
 std::array<double, 2> Planner::prior(const field::Situation& situation) const {
-  if (!prior_model_) return prior_club(sys_.field(), region_, situation, arrival_, bias_, ratio_);
-  const auto& m = *prior_model_;
-  const Eigen::MatrixXd q = input_row(sys_.field(), m.input_names, situation).transpose();
-  const learning::Predictions p = learning::predict(m, q);
-  const int ia = output_index(m, "angle"), is = output_index(m, "speed");
-  double v = region_.speed;
-  if (is >= 0)
-    v = p.mean(0, is);
-  else if (const double* fixed = m.fixed_value("speed"))
-    v = *fixed;
-  return {p.mean(0, ia), v};
+  std::array<double, 2> club{};
+  if (!prior_model_) {
+    club = prior_club(sys_.field(), region_, situation, arrival_, bias_, ratio_);
+  } else {
+    const auto& m = *prior_model_;
+    const Eigen::MatrixXd q = input_row(sys_.field(), m.input_names, situation).transpose();
+    const learning::Predictions p = learning::predict(m, q);
+    const int ia = output_index(m, "angle"), is = output_index(m, "speed");
+    double v = region_.speed;
+    if (is >= 0)
+      v = p.mean(0, is);
+    else if (const double* fixed = m.fixed_value("speed"))
+      v = *fixed;
+    club = {p.mean(0, ia), v};
+  }
+  // The region's fixed speed is the surveyed green's; the believed green may ask for another
+  // (the same bits without a belief).
+  if (!region_.learn_speed) club[1] = system::believed_fixed_speed(sys_, situation, club[1]);
+  return club;
 }
 
 std::array<double, 3> Planner::plan(std::array<double, 2> hole) const {

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "belief/prior.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "selfteach/hindsight.hpp"
@@ -16,7 +17,6 @@ namespace {
 
 constexpr double kCentredCapture =
     1.69;  ///< [m/s] centred lip-out, 108 mm x 60 mm cup (docs/physics.md)
-constexpr double kGravity = 9.81;
 
 std::array<double, 2> region_centre(const field::Situations& region) {
   const auto b = region_bounds(region);
@@ -38,7 +38,7 @@ LaunchNoise measure_launch_noise(const system::System& system, const field::Situ
         fmt::format("noise measurement: position std: expected 0..0.1 m, got {}", position_std));
   const auto& f = system.field();
   const auto hole = region_centre(region);
-  const auto guess = teacher::prior_launch(f, hole, 0.4);
+  const auto guess = belief::prior_launch(f, hole, 0.4);
   const double speed = region.learn_speed ? std::clamp(guess.speed / 1.6, system.config().speed_min,
                                                        system.config().speed_max)
                                           : region.speed;
@@ -75,7 +75,7 @@ LaunchNoise measure_launch_noise(const system::System& system, const field::Situ
 
 double sink_probability(const field::Field& field, double distance, double arrival,
                         const LaunchNoise& noise, int draws, std::uint64_t seed) {
-  const double a = 5.0 / 7.0 * field.rolling_resistance * kGravity;
+  const double a = belief::rolling_deceleration(field);
   const double radius = 0.5 * field.hole.diameter, ball = field.ball.radius;
   const double capture = kCentredCapture * std::clamp(field.hole.depth / 0.06, 0.5, 1.0);
   // The rolling speed at launch that arrives at `arrival` after `distance` (flat approximation).

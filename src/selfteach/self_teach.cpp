@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "belief/prior.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "stats/gpr.hpp"
@@ -97,7 +98,7 @@ double distance(const field::Situation& a, const field::Situation& b) {
 std::array<double, 2> prior_club(const field::Field& field, const field::Situations& region,
                                  const field::Situation& situation, double arrival, double bias,
                                  double ratio) {
-  auto g = teacher::prior_launch(field, situation.ball, situation.hole, arrival);
+  auto g = belief::prior_launch(field, situation.ball, situation.hole, arrival);
   // An obstacle on the line: the shortest bank shot (the teacher's first choice) instead.
   if (field::line_blocked(field, situation.ball, situation.hole, field.ball.radius))
     if (const auto banks = teacher::bank_shots(field, situation.ball, situation.hole, arrival);
@@ -193,7 +194,7 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
           : teacher::arrival_speed(field, teacher::parse_strategy(region.strategy));
   const double margin = label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
-  const double rolling_decel = 5.0 / 7.0 * field.rolling_resistance * 9.81;
+  const double rolling_decel = belief::rolling_deceleration(field);
 
   SelfTeachResult res;
   res.arrival_speed = rules.arrival_speed;

@@ -9,7 +9,7 @@
 ///    residual GP below, in units of the sinking window: 0.004 rad, 0.03 m/s), halved for every
 ///    earlier target within 1 cm (a target the putts cannot reach is not tried for ever).
 /// 2. Putt: prior + residual. The prior is what a person would use: aim at the hole, the launch
-///    speed that rolls the distance (teacher::prior_launch), mapped to the club by the launch
+///    speed that rolls the distance (belief::prior_launch), mapped to the club by the launch
 ///    relation the robot measures on its own putts (median launch angle - theta and launch speed /
 ///    club speed; before the first putt 0 and 1.6, an elastic impact with restitution 0.6). A GP
 ///    per output on (label - prior) at the labels corrects it. A putt without a label near its
@@ -101,7 +101,7 @@ learning::Model model_from_labels(const system::System& system, const field::Sit
                                   const std::vector<Label>& labels, int putts, std::uint64_t seed);
 
 /// The prior's club (angle [rad], speed [m/s]) for `hole`: aim at it, the launch speed that
-/// rolls there arriving at `arrival` [m/s] (teacher::prior_launch; with an obstacle on the line,
+/// rolls there arriving at `arrival` [m/s] (belief::prior_launch; with an obstacle on the line,
 /// the shortest bank shot, teacher::bank_shots), mapped through the launch
 /// relation (launch angle - theta = `bias` [rad], launch speed / club speed = `ratio`); the
 /// region's fixed speed for angle-only regions.

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "belief/prior.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "core/rng.hpp"
@@ -47,7 +48,8 @@ System::System(const control::ModuleConfig& config, field::Field field, plant::P
       survey_(std::move(field)),
       belief_plant_(std::move(belief)),
       belief_(plant::true_field(survey_, belief_plant_)),
-      plant_(std::move(plant)) {
+      plant_(std::move(plant)),
+      truth_(plant::true_field(survey_, plant_)) {
   config_.validate();
   plant_.validate();
   belief_plant_.validate();
@@ -61,13 +63,26 @@ System::System(const control::ModuleConfig& config, field::Field field, plant::P
     true_mount.club.face_restitution =
         std::min(0.99, belief_mount.club.face_restitution * plant_.arm.club_restitution_scale);
   true_mount_ = true_mount;
-  arm_world_ = std::make_unique<sim::World>(
-      control::make_world_with_arm(plant::true_field(survey_, plant_), true_mount));
+  arm_world_ = std::make_unique<sim::World>(control::make_world_with_arm(truth_, true_mount));
   ball_world_ = std::make_unique<sim::World>(control::make_ball_world(*arm_world_));
   // The module's model reads the arm's kinematics and inertia (the same in both mounts) and the
   // ball's radius from the world, and the robot's own mount: never the plant.
   module_ = std::make_unique<control::ModuleModel>(
       control::make_module_model(*arm_world_, std::move(hitting), config_, belief_mount));
+}
+
+double believed_fixed_speed(const System& system, const field::Situation& situation,
+                            double surveyed_speed) {
+  return belief::equivalent_club_speed(surveyed_speed, system.survey(), system.field(),
+                                       system.belief().arm.club_speed_scale, situation.ball,
+                                       situation.hole);
+}
+
+double true_fixed_speed(const System& system, const field::Situation& situation,
+                        double surveyed_speed) {
+  return belief::equivalent_club_speed(surveyed_speed, system.survey(), system.truth(),
+                                       system.plant().arm.club_speed_scale, situation.ball,
+                                       situation.hole);
 }
 
 void System::check_request(double angle, double speed, const std::string& what) const {

@@ -61,6 +61,8 @@ class System {
   const plant::Plant& belief() const { return belief_plant_; }
   /// The world as it is: the oracle and the world builder may read it, the robot may not.
   const plant::Plant& plant() const { return plant_; }
+  /// The lane as it is (the field file with the plant applied): the oracle's, never the robot's.
+  const field::Field& truth() const { return truth_; }
   const sim::World& arm_world() const { return *arm_world_; }  ///< true field + WAM + club
   const sim::World& ball_world() const {
     return *ball_world_;
@@ -83,6 +85,7 @@ class System {
   plant::Plant belief_plant_;
   field::Field belief_;
   plant::Plant plant_;
+  field::Field truth_;
   std::unique_ptr<sim::World> arm_world_;
   std::unique_ptr<sim::World> ball_world_;
   std::unique_ptr<control::ModuleModel> module_;
@@ -118,6 +121,16 @@ HitPose hit_pose(const System& system, std::array<double, 2> ball, double angle,
 /// True when the arm can make the hit from some stance: the angle is finite and the club speed
 /// within speed_min..the module's cap.
 bool hit_reachable(const System& system, double angle, double speed);
+
+/// [m/s] An angle-only model's fixed club speed (learned on the surveyed green) as the robot plays
+/// it now: the club speed that gives the ball the arrival speed `surveyed_speed` gave there, on the
+/// green and with the arm it believes in (belief::equivalent_club_speed). `surveyed_speed` itself
+/// without a belief.
+double believed_fixed_speed(const System& system, const field::Situation& situation,
+                            double surveyed_speed);
+/// The same in the world as it is (the oracle's).
+double true_fixed_speed(const System& system, const field::Situation& situation,
+                        double surveyed_speed);
 
 /// Per-thread mutable state for putts on one System.
 struct SystemData {

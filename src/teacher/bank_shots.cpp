@@ -4,12 +4,12 @@
 #include <cmath>
 #include <optional>
 
+#include "belief/prior.hpp"
 #include "sim/walls.hpp"
 
 namespace mg::teacher {
 namespace {
 
-constexpr double kGravity = 9.81;
 using Vec = std::array<double, 2>;
 
 Vec operator-(Vec a, Vec b) { return {a[0] - b[0], a[1] - b[1]}; }
@@ -92,7 +92,7 @@ double launch_speed(const std::vector<Vec>& path, const std::vector<const Mirror
 
 std::vector<BankShot> bank_shots(const field::Field& f, std::array<double, 2> ball,
                                  std::array<double, 2> hole, double arrival) {
-  const double a_roll = 5.0 / 7.0 * f.rolling_resistance * kGravity;
+  const double a_roll = belief::rolling_deceleration(f);
   // The legs may pass a ball radius from anything but the faces they bounce on (0.99: the bounce
   // point itself is exactly a radius away).
   const double clearance = 0.99 * f.ball.radius;

@@ -23,7 +23,6 @@ TeacherOptions options_for(const field::Situations& region, const std::string& s
 
 namespace {
 
-constexpr double kGravity = 9.81;
 constexpr double kLaunchBias = -0.006;  ///< [rad] measured launch angle - theta (docs/control.md)
 constexpr double kLaunchRatio = 1.6;    ///< measured launch speed / club speed (1.54-1.67)
 /// [rad] how far a search may turn from where it starts (the fixed arm's envelope is 0.9 wide;
@@ -56,10 +55,10 @@ class Search {
     dx_ = hole[0] - ball_[0];
     dy_ = hole[1] - ball_[1];
     distance_ = std::hypot(dx_, dy_);
-    a_roll_ = 5.0 / 7.0 * f.rolling_resistance * kGravity;
+    a_roll_ = belief::rolling_deceleration(f);
     vt_ = arrival_speed(f, options.strategy);
     radius_ = 0.5 * f.hole.diameter;
-    const LaunchGuess prior = prior_launch(f, ball_, hole, vt_);
+    const belief::LaunchGuess prior = belief::prior_launch(f, ball_, hole, vt_);
     aim_ = prior.angle;
     prior_launch_speed_ = prior.speed;
     lateral_gain_ = -distance_;
@@ -390,20 +389,6 @@ double arrival_speed(const field::Field& field, Strategy strategy) {
   // depth.
   const double depth_factor = std::clamp(field.hole.depth / 0.06, 0.5, 1.0);
   return std::max(kMinSpeedArrival, kMinAngleArrival * depth_factor);
-}
-
-LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> hole, double arrival) {
-  return prior_launch(field, field.tee, hole, arrival);
-}
-
-LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> ball,
-                         std::array<double, 2> hole, double arrival) {
-  const double dx = hole[0] - ball[0], dy = hole[1] - ball[1];
-  const double a_roll = 5.0 / 7.0 * field.rolling_resistance * kGravity;
-  const double climb = field.height(hole[0], hole[1]) - field.height(ball[0], ball[1]);
-  const double v2 =
-      arrival * arrival + 2.0 * a_roll * std::hypot(dx, dy) + 10.0 / 7.0 * kGravity * climb;
-  return {std::atan2(dy, dx), 7.0 / 5.0 * std::sqrt(std::max(v2, 0.04))};
 }
 
 Example teach(const system::System& system, system::SystemData& data, std::array<double, 2> hole,

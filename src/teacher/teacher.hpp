@@ -33,6 +33,7 @@
 #include <array>
 #include <string>
 
+#include "belief/prior.hpp"
 #include "system/system.hpp"
 
 namespace mg::teacher {
@@ -90,18 +91,5 @@ Example teach(const system::System& system, system::SystemData& data,
 
 /// The target arrival speed [m/s] of `strategy` for the field's hole.
 double arrival_speed(const field::Field& field, Strategy strategy);
-
-/// The physics-free guess a person would start from (no putt seen yet): aim at the hole, and the
-/// ball launch speed [m/s] that rolls the distance plus the climb and still has `arrival` [m/s]
-/// at the hole (rolling deceleration (5/7) rho g, a launched ball keeps 5/7 of its speed once it
-/// rolls).
-struct LaunchGuess {
-  double angle = 0.0;  ///< [rad]
-  double speed = 0.0;  ///< [m/s] ball launch speed
-};
-LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> hole, double arrival);
-/// The same from a ball at `ball` (not the tee).
-LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> ball,
-                         std::array<double, 2> hole, double arrival);
 
 }  // namespace mg::teacher

@@ -32,6 +32,23 @@ TEST(System, BadConfigurationIsAnInputError) {
   EXPECT_NO_THROW(s.check_request(0.0, 1.0, "putt"));
 }
 
+TEST(System, AFixedSpeedIsPlayedInTheBeliefAndTheOracleInTheTruth) {
+  plant::Plant slow;
+  slow.field.rolling_resistance_scale = 1.12;
+  slow.arm.club_speed_scale = 0.97;
+  const control::ModuleConfig c = load_config("", "flat");
+  const field::Situation s{{0.0, 0.0}, {2.2, 0.1}};
+  // No belief: the survey's fixed speed, bit for bit, whatever the plant; the oracle's rises.
+  const System unaware(c, slow);
+  EXPECT_EQ(believed_fixed_speed(unaware, s, 1.55), 1.55);
+  const double oracle = true_fixed_speed(unaware, s, 1.55);
+  EXPECT_GT(oracle, 1.55 / 0.97);
+  // Believing the truth: the robot plays what the oracle plays.
+  const System aware(c, slow, slow);
+  EXPECT_EQ(believed_fixed_speed(aware, s, 1.55), oracle);
+  EXPECT_EQ(true_fixed_speed(System(c), s, 1.55), 1.55);
+}
+
 TEST(System, PuttsOnManyThreadsGiveTheSerialBits) {
   const System s(load_config("", "flat"));
   const std::vector<double> angles{-0.05, 0.0, 0.03, 0.08};

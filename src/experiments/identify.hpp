@@ -19,7 +19,7 @@
 #include "field/field.hpp"
 #include "system/system.hpp"
 
-namespace mg::cli {
+namespace mg::experiments {
 
 /// One identification putt.
 struct IdentifyHit {
@@ -77,4 +77,4 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
 /// the launch to 0.5 s, or to the first sample near a border, an obstacle or the hole.
 std::array<double, 2> launch_window(const field::Field& field, const belief::ObservedPath& path);
 
-}  // namespace mg::cli
+}  // namespace mg::experiments

@@ -1,4 +1,4 @@
-#include "cli/identify.hpp"
+#include "experiments/identify.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "core/rng.hpp"
 #include "field/situations.hpp"
 
-namespace mg::cli {
+namespace mg::experiments {
 namespace {
 
 /// The survey's spread when nothing better is known: grass varies by +-20 %, a survey misses a
@@ -277,4 +277,4 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
   return id;
 }
 
-}  // namespace mg::cli
+}  // namespace mg::experiments
