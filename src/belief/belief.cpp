@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "field/map_reader.hpp"
+#include "plant/plant_reader.hpp"
 
 namespace mg::belief {
 namespace {
@@ -45,35 +46,7 @@ void check_std(const std::string& source, const std::string& key, double v, doub
 plant::Plant read_std(const YAML::Node& node, const std::string& source) {
   plant::Plant s = zero_plant();
   field::MapReader r(node, source, "std");
-  if (r.has("field")) {
-    field::MapReader f = r.child("field");
-    auto& t = s.field;
-    if (f.has("rolling_resistance")) t.rolling_resistance = f.number("rolling_resistance");
-    if (f.has("rolling_resistance_scale"))
-      t.rolling_resistance_scale = f.number("rolling_resistance_scale");
-    if (f.has("sliding_friction")) t.sliding_friction = f.number("sliding_friction");
-    if (f.has("sliding_friction_scale"))
-      t.sliding_friction_scale = f.number("sliding_friction_scale");
-    t.extra_slope = f.numbers<2>("extra_slope", t.extra_slope);
-    t.hole_offset = f.numbers<2>("hole_offset", t.hole_offset);
-    f.finish();
-  }
-  if (r.has("arm")) {
-    field::MapReader a = r.child("arm");
-    auto& t = s.arm;
-    t.launch_angle_bias = a.number("launch_angle_bias", t.launch_angle_bias);
-    t.club_speed_scale = a.number("club_speed_scale", t.club_speed_scale);
-    t.club_restitution_scale = a.number("club_restitution_scale", t.club_restitution_scale);
-    t.joint_friction = a.numbers<7>("joint_friction", t.joint_friction);
-    t.torque_noise = a.number("torque_noise", t.torque_noise);
-    a.finish();
-  }
-  if (r.has("perception")) {
-    field::MapReader v = r.child("perception");
-    s.perception.noise = v.number("noise", s.perception.noise);
-    s.perception.latency = v.number("latency", s.perception.latency);
-    v.finish();
-  }
+  plant::read_plant_sections(r, s);
   r.finish();
   return s;
 }

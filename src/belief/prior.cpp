@@ -37,10 +37,10 @@ LaunchGuess prior_launch(const field::Field& field, std::array<double, 2> ball,
 double prior_arrival(const field::Field& field, std::array<double, 2> ball,
                      std::array<double, 2> hole, double launch_speed) {
   const double roll = 5.0 / 7.0 * launch_speed;
-  const double v2 = roll * roll -
-                    2.0 * rolling_deceleration(field) *
-                        std::hypot(hole[0] - ball[0], hole[1] - ball[1]) -
-                    10.0 / 7.0 * kGravity * climb(field, ball, hole);
+  const double v2 =
+      roll * roll -
+      2.0 * rolling_deceleration(field) * std::hypot(hole[0] - ball[0], hole[1] - ball[1]) -
+      10.0 / 7.0 * kGravity * climb(field, ball, hole);
   return std::sqrt(std::max(v2, 0.0));
 }
 

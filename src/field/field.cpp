@@ -385,6 +385,21 @@ std::vector<std::string> list_shipped_fields() {
   return names;
 }
 
+std::array<double, 2> height_range(const Field& f) {
+  const auto& b = f.bounds;
+  const int ncol = static_cast<int>(std::lround((b[1] - b[0]) / f.cell_size)) + 1;
+  const int nrow = static_cast<int>(std::lround((b[3] - b[2]) / f.cell_size)) + 1;
+  double z_min = 1e9, z_max = -1e9;
+  for (int r = 0; r < nrow; ++r)
+    for (int c = 0; c < ncol; ++c) {
+      const double z =
+          f.height(b[0] + (b[1] - b[0]) * c / (ncol - 1), b[2] + (b[3] - b[2]) * r / (nrow - 1));
+      z_min = std::min(z_min, z);
+      z_max = std::max(z_max, z);
+    }
+  return {z_min, z_max};
+}
+
 double obstacle_top(const Field& f, const Obstacle& ob) {
   const Footprint fp = ob.footprint();
   const double c = std::cos(fp.yaw), s = std::sin(fp.yaw);

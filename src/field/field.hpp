@@ -76,6 +76,10 @@ void check_hole_position(const Field& field, std::array<double, 2> position);
 /// its borders and clear of every obstacle.
 void check_ball_position(const Field& field, std::array<double, 2> ball, const std::string& what);
 
+/// [m] The lowest and the highest height of the lane over its heightfield grid (cell_size
+/// apart, corners included): the extent the world's ground and borders are built for.
+std::array<double, 2> height_range(const Field& field);
+
 /// [m] Height of an obstacle's top: `height` above the highest ground under its footprint
 /// (sampled on a 9 x 9 grid).
 double obstacle_top(const Field& field, const Obstacle& obstacle);

@@ -10,6 +10,7 @@
 #include "core/io.hpp"
 #include "core/rng.hpp"
 #include "field/map_reader.hpp"
+#include "plant/plant_reader.hpp"
 
 namespace mg::plant {
 namespace {
@@ -84,6 +85,38 @@ void Plant::validate() const {
   check_range(s, "perception.latency", perception.latency, 0.0, 0.5, " s");
 }
 
+void read_plant_sections(field::MapReader& r, Plant& p) {
+  if (r.has("field")) {
+    field::MapReader f = r.child("field");
+    auto& t = p.field;
+    if (f.has("rolling_resistance")) t.rolling_resistance = f.number("rolling_resistance");
+    if (f.has("rolling_resistance_scale"))
+      t.rolling_resistance_scale = f.number("rolling_resistance_scale");
+    if (f.has("sliding_friction")) t.sliding_friction = f.number("sliding_friction");
+    if (f.has("sliding_friction_scale"))
+      t.sliding_friction_scale = f.number("sliding_friction_scale");
+    t.extra_slope = f.numbers<2>("extra_slope", t.extra_slope);
+    t.hole_offset = f.numbers<2>("hole_offset", t.hole_offset);
+    f.finish();
+  }
+  if (r.has("arm")) {
+    field::MapReader a = r.child("arm");
+    auto& t = p.arm;
+    t.launch_angle_bias = a.number("launch_angle_bias", t.launch_angle_bias);
+    t.club_speed_scale = a.number("club_speed_scale", t.club_speed_scale);
+    t.club_restitution_scale = a.number("club_restitution_scale", t.club_restitution_scale);
+    t.joint_friction = a.numbers<7>("joint_friction", t.joint_friction);
+    t.torque_noise = a.number("torque_noise", t.torque_noise);
+    a.finish();
+  }
+  if (r.has("perception")) {
+    field::MapReader v = r.child("perception");
+    p.perception.noise = v.number("noise", p.perception.noise);
+    p.perception.latency = v.number("latency", p.perception.latency);
+    v.finish();
+  }
+}
+
 Plant parse_plant(std::string_view yaml_text, const std::string& source) {
   if (yaml_text.size() > kMaxPlantBytes)
     throw InputError(fmt::format("{}: {} bytes: a plant file is at most {} bytes", source,
@@ -104,35 +137,7 @@ Plant parse_plant(std::string_view yaml_text, const std::string& source) {
     const double version = r.number("format_version");
     if (version != kPlantFormatVersion)
       r.fail("format_version", fmt::format("expected {}, got {}", kPlantFormatVersion, version));
-    if (r.has("field")) {
-      field::MapReader f = r.child("field");
-      auto& t = p.field;
-      if (f.has("rolling_resistance")) t.rolling_resistance = f.number("rolling_resistance");
-      if (f.has("rolling_resistance_scale"))
-        t.rolling_resistance_scale = f.number("rolling_resistance_scale");
-      if (f.has("sliding_friction")) t.sliding_friction = f.number("sliding_friction");
-      if (f.has("sliding_friction_scale"))
-        t.sliding_friction_scale = f.number("sliding_friction_scale");
-      t.extra_slope = f.numbers<2>("extra_slope", t.extra_slope);
-      t.hole_offset = f.numbers<2>("hole_offset", t.hole_offset);
-      f.finish();
-    }
-    if (r.has("arm")) {
-      field::MapReader a = r.child("arm");
-      auto& t = p.arm;
-      t.launch_angle_bias = a.number("launch_angle_bias", t.launch_angle_bias);
-      t.club_speed_scale = a.number("club_speed_scale", t.club_speed_scale);
-      t.club_restitution_scale = a.number("club_restitution_scale", t.club_restitution_scale);
-      t.joint_friction = a.numbers<7>("joint_friction", t.joint_friction);
-      t.torque_noise = a.number("torque_noise", t.torque_noise);
-      a.finish();
-    }
-    if (r.has("perception")) {
-      field::MapReader v = r.child("perception");
-      p.perception.noise = v.number("noise", p.perception.noise);
-      p.perception.latency = v.number("latency", p.perception.latency);
-      v.finish();
-    }
+    read_plant_sections(r, p);
     r.finish();
   } catch (const YAML::Exception& e) {
     throw InputError(fmt::format("{}: malformed plant: {}", source, e.what()));

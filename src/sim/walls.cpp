@@ -124,17 +124,7 @@ Walls make_walls(const field::Field& f) {
   Walls walls;
   walls.radius = f.ball.radius;
   const auto& b = f.bounds;
-  // The lane's extent in height, as world_mjcf computes it for the drawn borders.
-  const int ncol = static_cast<int>(std::lround((b[1] - b[0]) / f.cell_size)) + 1;
-  const int nrow = static_cast<int>(std::lround((b[3] - b[2]) / f.cell_size)) + 1;
-  double z_min = 1e9, z_max = -1e9;
-  for (int r = 0; r < nrow; ++r)
-    for (int c = 0; c < ncol; ++c) {
-      const double z =
-          f.height(b[0] + (b[1] - b[0]) * c / (ncol - 1), b[2] + (b[3] - b[2]) * r / (nrow - 1));
-      z_min = std::min(z_min, z);
-      z_max = std::max(z_max, z);
-    }
+  const auto [z_min, z_max] = field::height_range(f);
   const double bottom = z_min - 0.05;
   const double cx = 0.5 * (b[0] + b[1]), cy = 0.5 * (b[2] + b[3]);
   const double rx = 0.5 * (b[1] - b[0]), ry = 0.5 * (b[3] - b[2]);

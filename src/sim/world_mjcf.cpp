@@ -37,14 +37,7 @@ std::string world_mjcf(const field::Field& f, const WorldOptions& o, const std::
   const auto& b = f.bounds;
   const int ncol = static_cast<int>(std::lround((b[1] - b[0]) / f.cell_size)) + 1;
   const int nrow = static_cast<int>(std::lround((b[3] - b[2]) / f.cell_size)) + 1;
-  double z_min = 1e9, z_max = -1e9;
-  for (int r = 0; r < nrow; ++r)
-    for (int c = 0; c < ncol; ++c) {
-      const double z =
-          f.height(b[0] + (b[1] - b[0]) * c / (ncol - 1), b[2] + (b[3] - b[2]) * r / (nrow - 1));
-      z_min = std::min(z_min, z);
-      z_max = std::max(z_max, z);
-    }
+  const auto [z_min, z_max] = field::height_range(f);  // over the same grid
   const double elevation = std::max(z_max - z_min, 1e-4);
   const double cx = 0.5 * (b[0] + b[1]), cy = 0.5 * (b[2] + b[3]);
   const double rx = 0.5 * (b[1] - b[0]), ry = 0.5 * (b[3] - b[2]);
