@@ -248,8 +248,8 @@ class RollModel {
 
 /// Least-squares fit of a + b t + c t^2 to (t[i], y[i stride]) (c = 0 when `quadratic` is
 /// false); the value and derivative at t = 0.
-inline void poly_fit(const double* t, const double* y, std::size_t n, std::size_t stride, bool quadratic,
-              double& value, double& slope) {
+inline void poly_fit(const double* t, const double* y, std::size_t n, std::size_t stride,
+                     bool quadratic, double& value, double& slope) {
   const int m = quadratic ? 3 : 2;
   Eigen::MatrixXd a(static_cast<Eigen::Index>(n), m);
   Eigen::VectorXd b(static_cast<Eigen::Index>(n));
@@ -267,7 +267,7 @@ inline void poly_fit(const double* t, const double* y, std::size_t n, std::size_
 
 /// Least-squares quadratic through (t[i], y[2 i]): value, first and second derivative at t = 0.
 inline void poly_fit3(const double* t, const double* y, std::size_t n, double& value, double& slope,
-               double& curvature) {
+                      double& curvature) {
   Eigen::MatrixXd a(static_cast<Eigen::Index>(n), 3);
   Eigen::VectorXd b(static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < n; ++i) {
@@ -286,7 +286,7 @@ inline void poly_fit3(const double* t, const double* y, std::size_t n, double& v
 /// Velocity [m/s] of the path around sample i (a chord over +- kSpeedWindow); false for a lone
 /// sample.
 inline bool velocity_at(const std::vector<std::array<double, 3>>& s, std::size_t i, double& vx,
-                 double& vy) {
+                        double& vy) {
   std::size_t lo = i, hi = i;
   while (lo > 0 && s[i][0] - s[lo - 1][0] <= kSpeedWindow + 1e-9) --lo;
   while (hi + 1 < s.size() && s[hi + 1][0] - s[i][0] <= kSpeedWindow + 1e-9) ++hi;
@@ -301,7 +301,7 @@ inline bool velocity_at(const std::vector<std::array<double, 3>>& s, std::size_t
 /// (kMinStopTime). `normal`, `gravity_normal`: [m/s^2] the normal force per mass that keeps it
 /// on the lane, (g + v'Hv) / q, and gravity's part of it, g / q.
 inline bool about_to_stop(const field::Field& field, double x, double y, double vx, double vy,
-                   double& normal, double& gravity_normal) {
+                          double& normal, double& gravity_normal) {
   const double sp = std::hypot(vx, vy);
   const auto g = field.surface.gradient(x, y);
   const double q = std::sqrt(1.0 + g[0] * g[0] + g[1] * g[1]);
