@@ -4,12 +4,14 @@ as a policy, and a numpy learner (CMA-ES over a linear policy) with its learning
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python/round_baselines.py --out out/round-baselines
 
+Configurations (CONFIGS): flat with holes and balls drawn from boxes, bank-shot with balls drawn
+from a box before the block, l-shape from its tee, the obstacles course.
 1. The planner (minigolf.round_baselines.PlannerPolicy, the search `minigolf play` plays with):
-   `--episodes` episodes per field (player "fast", and "ball" for the MuJoCo ball) with the
-   oracle's launch error; mean strokes per hole, holes sunk, seconds per stroke.
+   `--episodes` episodes per configuration (player "fast", "ball" for the MuJoCo ball, "arm" on
+   flat) with the oracle's launch error; mean strokes per hole, holes sunk, seconds per stroke.
 2. CMA-ES over LinearRoundPolicy (features to_hole_x, to_hole_y, distance, line_blocked) on
-   Round-v0 with player "fast" per field in `--learn-fields`, `--runs` runs: mean strokes of the
-   distribution mean on 10 held-out episodes at checkpoints of strokes played.
+   Round-v0 with player "fast" in `--learn` configurations, `--runs` runs: mean strokes per hole of
+   the distribution mean on 20 held-out episodes at checkpoints of strokes played.
 Writes summary.md, curves.csv and round_learning_curves.png to --out.
 """
 import argparse
@@ -23,69 +25,78 @@ import minigolf
 from minigolf.round_baselines import PlannerPolicy, learning_curve, play_episode
 
 
-def planner_rows(fields, players, episodes):
+CONFIGS = {
+    "flat (boxes)": dict(field="flat", situations="box:1.0,2.5:-0.4,0.4:4,4", balls="box:0.0,0.5:-0.3,0.3:3,3"),
+    "bank-shot (balls in a box)": dict(field="bank-shot", balls="box:0.0,0.6:-0.4,0.4:3,3"),
+    "l-shape (tee)": dict(field="l-shape"),
+    "obstacles (course)": dict(course="obstacles"),
+}
+
+
+def planner_rows(configs, players, episodes):
     rows = []
-    for field in fields:
+    for name in configs:
         for player in players:
-            env = minigolf.make("minigolf/Round-v0", field=field, player=player,
-                                situations="", balls="")
+            if player == "arm" and not name.startswith("flat"):
+                continue
+            env = minigolf.make("minigolf/Round-v0", player=player, **CONFIGS[name])
             policy = PlannerPolicy(env)
             start = time.perf_counter()
             results = [play_episode(env, policy, seed=s) for s in range(episodes)]
             seconds = time.perf_counter() - start
             steps = sum(r["steps"] for r in results)
-            rows.append(dict(field=field, player=player, episodes=episodes,
-                             mean_strokes=float(np.mean([r["strokes"] for r in results])),
+            holes = len(env.holes)
+            rows.append(dict(field=name, player=player, episodes=episodes, holes=holes * episodes,
+                             mean_strokes=float(np.mean([r["strokes"] for r in results])) / holes,
                              sunk=sum(r["sunk"] for r in results), seconds_per_stroke=seconds / steps))
     return rows
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--fields", default="flat,arctan,bank-shot,l-shape")
-    p.add_argument("--players", default="fast,ball")
-    p.add_argument("--episodes", type=int, default=3)
-    p.add_argument("--learn-fields", default="flat,bank-shot")
-    p.add_argument("--checkpoints", default="50,100,200,400,800")
-    p.add_argument("--runs", type=int, default=3)
+    p.add_argument("--configs", default=",".join(CONFIGS))
+    p.add_argument("--players", default="fast,ball,arm")
+    p.add_argument("--episodes", type=int, default=5)
+    p.add_argument("--learn", default="flat (boxes),bank-shot (balls in a box)")
+    p.add_argument("--checkpoints", default="100,300,1000,3000,10000")
+    p.add_argument("--runs", type=int, default=5)
     p.add_argument("--out", default="out/round-baselines")
     args = p.parse_args()
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    fields = args.fields.split(",")
-    planner = planner_rows(fields, args.players.split(","), args.episodes)
+    planner = planner_rows(args.configs.split(","), args.players.split(","), args.episodes)
     checkpoints = [int(c) for c in args.checkpoints.split(",")]
     curves = []
     start = time.perf_counter()
-    for field in args.learn_fields.split(","):
-        env = minigolf.make("minigolf/Round-v0", field=field, player="fast")
+    for field in args.learn.split(","):
+        env = minigolf.make("minigolf/Round-v0", player="fast", **CONFIGS[field])
         for run in range(args.runs):
-            for row in learning_curve(env, checkpoints, seed=run, test_seeds=range(1000, 1010), episodes=2):
+            for row in learning_curve(env, checkpoints, seed=run, test_seeds=range(1000, 1020), episodes=2):
                 curves.append(dict(field=field, run=run, **row))
     learn_seconds = time.perf_counter() - start
     with open(out / "curves.csv", "w") as f:
-        f.write("field,run,strokes_played,spent,mean_strokes,sunk_ratio\n")
+        f.write("config,run,strokes_played,spent,mean_strokes,sunk_ratio\n")
         for r in curves:
-            f.write(f"{r['field']},{r['run']},{r['strokes_played']},{r['spent']},{r['mean_strokes']:.3f},"
+            f.write(f"\"{r['field']}\",{r['run']},{r['strokes_played']},{r['spent']},{r['mean_strokes']:.3f},"
                     f"{r['sunk_ratio']:.3f}\n")
     lines = [f"Planner policy (oracle launch error), {args.episodes} episodes per row, max_strokes 6 "
              f"(load average {os.getloadavg()[0]:.1f}, {os.cpu_count()} cores):", "",
-             "| field | player | mean strokes | holes sunk | s / stroke |", "|---|---|---:|---:|---:|"]
+             "| configuration | player | strokes per hole | holes sunk | s / stroke |", "|---|---|---:|---:|---:|"]
     for r in planner:
-        lines.append(f"| {r['field']} | {r['player']} | {r['mean_strokes']:.2f} | {r['sunk']}/{r['episodes']} | "
+        lines.append(f"| {r['field']} | {r['player']} | {r['mean_strokes']:.2f} | {r['sunk']}/{r['holes']} | "
                      f"{r['seconds_per_stroke']:.2f} |")
-    lines += ["", f"CMA-ES over a linear policy (player fast), mean strokes on 10 held-out episodes, median "
+    lines += ["", f"CMA-ES over a linear policy (player fast), strokes per hole on 20 held-out episodes, median "
                   f"(min-max) over {args.runs} runs ({learn_seconds:.0f} s in all):", "",
-              "| field | " + " | ".join(f"{c} strokes" for c in checkpoints) + " |",
-              "|---|" + "---:|" * len(checkpoints)]
-    for field in args.learn_fields.split(","):
+              "| configuration | " + " | ".join(f"{c} strokes" for c in checkpoints) + " | planner |",
+              "|---|" + "---:|" * (len(checkpoints) + 1)]
+    for field in args.learn.split(","):
         cells = []
         for c in checkpoints:
             v = [r["mean_strokes"] for r in curves if r["field"] == field and r["strokes_played"] == c]
             cells.append(f"{np.median(v):.2f} ({min(v):.1f}-{max(v):.1f})")
         planner_ref = [r["mean_strokes"] for r in planner if r["field"] == field and r["player"] == "fast"]
-        lines.append(f"| {field} | " + " | ".join(cells) + " |"
-                     + (f" planner: {planner_ref[0]:.2f}" if planner_ref else ""))
+        lines.append(f"| {field} | " + " | ".join(cells) + " | "
+                     + (f"{planner_ref[0]:.2f} |" if planner_ref else "— |"))
     text = "\n".join(lines)
     print(text)
     (out / "summary.md").write_text(text + "\n")
@@ -96,7 +107,7 @@ def main():
     except ImportError:
         return
     fig, ax = plt.subplots(figsize=(6, 3.6))
-    for k, field in enumerate(args.learn_fields.split(",")):
+    for k, field in enumerate(args.learn.split(",")):
         med = [np.median([r["mean_strokes"] for r in curves if r["field"] == field and r["strokes_played"] == c])
                for c in checkpoints]
         lo = [min(r["mean_strokes"] for r in curves if r["field"] == field and r["strokes_played"] == c)
