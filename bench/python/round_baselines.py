@@ -68,10 +68,11 @@ def main():
     checkpoints = [int(c) for c in args.checkpoints.split(",")]
     curves = []
     start = time.perf_counter()
-    for field in args.learn.split(","):
+    learn = [c for c in args.learn.split(",") if c]
+    for field in learn:
         env = minigolf.make("minigolf/Round-v0", player="fast", **CONFIGS[field])
         for run in range(args.runs):
-            for row in learning_curve(env, checkpoints, seed=run, test_seeds=range(1000, 1020), episodes=2):
+            for row in learning_curve(env, checkpoints, seed=run, test_seeds=range(2000, 2020)):
                 curves.append(dict(field=field, run=run, **row))
     learn_seconds = time.perf_counter() - start
     with open(out / "curves.csv", "w") as f:
@@ -89,7 +90,7 @@ def main():
                   f"(min-max) over {args.runs} runs ({learn_seconds:.0f} s in all):", "",
               "| configuration | " + " | ".join(f"{c} strokes" for c in checkpoints) + " | planner |",
               "|---|" + "---:|" * (len(checkpoints) + 1)]
-    for field in args.learn.split(","):
+    for field in learn:
         cells = []
         for c in checkpoints:
             v = [r["mean_strokes"] for r in curves if r["field"] == field and r["strokes_played"] == c]
@@ -107,7 +108,9 @@ def main():
     except ImportError:
         return
     fig, ax = plt.subplots(figsize=(6, 3.6))
-    for k, field in enumerate(args.learn.split(",")):
+    if not learn:
+        return
+    for k, field in enumerate(learn):
         med = [np.median([r["mean_strokes"] for r in curves if r["field"] == field and r["strokes_played"] == c])
                for c in checkpoints]
         lo = [min(r["mean_strokes"] for r in curves if r["field"] == field and r["strokes_played"] == c)

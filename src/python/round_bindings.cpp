@@ -127,6 +127,16 @@ void bind_round(py::module_& m) {
       "from; end: the putt's end; rest, path (N, 2): where it stopped and its path [m]");
 
   m.def(
+      "club_speed_range",
+      [](const system::System& s) {
+        const auto& mc = s.module().config();
+        return std::array<double, 2>{mc.speed_min, std::min(mc.speed_max, mc.arm_speed_cap)};
+      },
+      py::arg("system"),
+      "The club speeds the arm really gives [m/s]: the envelope's, capped by the arm's top speed "
+      "(as `minigolf play` calibrates and plays)");
+
+  m.def(
       "line_blocked",
       [](const field::Field& f, std::array<double, 2> a, std::array<double, 2> b,
          double clearance) { return field::line_blocked(f, a, b, clearance); },

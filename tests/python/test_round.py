@@ -99,7 +99,7 @@ def test_the_planner_policy_replays_the_exact_oracle_round():
 
 
 def test_pickle_mid_episode_plays_the_same_bits():
-    env = RoundEnv(field="bank-shot", player="fast")
+    env = RoundEnv(field="bank-shot", player="fast", balls="box:0.0,0.6:-0.4,0.4:3,3")
     env.reset(seed=3)
     env.step(np.array([0.1, -0.5], dtype=np.float32))
     clones = [pickle.loads(pickle.dumps(env)), copy.deepcopy(env)]
@@ -107,6 +107,7 @@ def test_pickle_mid_episode_plays_the_same_bits():
     ref = env.step(a)
     for c in clones:
         assert data_equivalence(ref, c.step(a))
+    assert all(data_equivalence(env.reset(seed=4), c.reset(seed=4)) for c in clones)  # the same draws
 
 
 def test_reset_checks_its_options():
@@ -172,3 +173,29 @@ def test_registered_ids():
     env = minigolf.make("minigolf/Round-v0", player="fast")
     assert isinstance(env, RoundEnv) and env.holes[0]["field_name"] == "bank-shot"
     assert minigolf.make("minigolf/PuttFast-v0").mode == "fast"
+
+
+# ---- with Gymnasium installed (not in Debian 12: these skip without it)
+def _gymnasium():
+    try:
+        import gymnasium as gym
+    except ImportError:
+        pytest.skip("gymnasium is not installed (not in Debian 12); test_env.check_env is its copy")
+    return gym
+
+
+def test_gymnasium_check_env_and_same_step_vector_envs():
+    gym = _gymnasium()
+    from gymnasium.utils.env_checker import check_env as gym_check_env
+    from gymnasium.vector import AutoresetMode
+    for env_id, kwargs in (("minigolf/Round-v0", dict(player="fast")), ("minigolf/PuttFast-v0", {})):
+        env = gym.make(env_id, **kwargs)
+        gym_check_env(env.unwrapped, skip_render_check=True)
+        assert env.get_wrapper_attr("to_physical") is not None  # reachable through the wrappers
+    vec = minigolf.make_vec("minigolf/PuttFast-v0", num_envs=2)
+    assert vec.metadata["autoreset_mode"] == AutoresetMode.SAME_STEP
+    vec.reset(seed=[1, 2])
+    for _ in range(3):  # every vector step plays a putt in every sub-environment
+        _, _, terminated, _, info = vec.step(np.zeros((2, 2), dtype=np.float32))
+        assert np.all(terminated) and "final_obs" in info
+    vec.close()

@@ -30,6 +30,7 @@ from ._minigolf import (  # noqa: F401
     Renderer,
     World,
     calibrate_launch_skill,
+    club_speed_range,
     courses,
     end_of_stroke,
     fast_putt,

@@ -23,7 +23,8 @@ Bounds: the union of the shipped fields' lanes (and of the environment's own fie
 Action (float32, [-1, 1]^2): a[0] the direction relative to the line from the ball to the hole,
 times pi (0: straight at the hole); a[1] the speed, linear from its least (-1) to its most (+1):
 the ball's launch speed in [0.35, 4.2] m/s (the planner's range) for player "ball" and "fast", the
-club speed over the safe envelope for player "arm". `to_physical`/`from_physical` map actions to
+club speed the arm gives (the safe envelope, capped by its top speed: `club_speed_range`) for
+player "arm". `to_physical`/`from_physical` map actions to
 (direction [rad, world], speed [m/s]) and back for the current ball and hole.
 """
 from __future__ import annotations
@@ -40,7 +41,7 @@ PLAYERS = ("ball", "fast", "arm")
 LAUNCH_SPEEDS = (0.35, 4.2)  # [m/s] the planner's launch speeds (game::PlannerOptions)
 PATH_INTERVAL = 0.01         # [s] between path points, as the round records them
 DEFAULT_MAX_STROKES = 6      # a single field's hole (a course says its own)
-_UNPICKLED = ("_systems", "_data", "_renderer", "_lanes")
+_UNPICKLED = ("_systems", "_data", "_renderer", "_lanes", "_region")
 
 _BASE_NAMES = ("ball_x", "ball_y", "hole_x", "hole_y", "to_hole_x", "to_hole_y", "distance",
                "line_blocked", "stroke_fraction", "lane_x_min", "lane_x_max", "lane_y_min",
@@ -133,10 +134,6 @@ class RoundEnv(_Base):
             h["tee"] = h["tee"] or tuple(f.tee)
             h["hole"] = h["hole"] or tuple(f.hole_position)
             h["field_name"] = f.name
-        self._region = None
-        if situations or balls:
-            f = self._systems[field].field
-            self._region = f.region(situations, balls)
         self._set_spaces()
         self._np_random = None
         self._hole_index = 0
@@ -159,6 +156,9 @@ class RoundEnv(_Base):
                 self._data[h["field"]] = s.make_data()
         self._lanes = {}    # (field, hole) -> (LaneRegion, cup)
         self._renderer = None
+        self._region = None  # where holes and balls are drawn (situations, balls)
+        if k["situations"] or k["balls"]:
+            self._region = self._systems[k["field"]].field.region(k["situations"], k["balls"])
 
     def _set_spaces(self):
         names, _ = shipped_fields()
@@ -168,9 +168,8 @@ class RoundEnv(_Base):
         self.observation_space = _Space(low=olow, high=ohigh, dtype=np.float32)
         self.action_space = _Space(low=np.full(2, -1.0, np.float32), high=np.full(2, 1.0, np.float32),
                                    dtype=np.float32)
-        if self.player == "arm":
-            e = next(iter(self._systems.values())).envelope
-            self.speed_range = (float(e["speed_min"]), float(e["speed_max"]))
+        if self.player == "arm":  # what the arm really gives (the envelope, capped by its top speed)
+            self.speed_range = tuple(float(v) for v in _minigolf.club_speed_range(next(iter(self._systems.values()))))
         else:
             self.speed_range = LAUNCH_SPEEDS
         self._onehot = {}
@@ -333,7 +332,8 @@ class RoundEnv(_Base):
             r = s.putt(0.0, speed, hole=hole, ball=ball, aim=direction, record_interval=PATH_INTERVAL, data=data)
         except _minigolf.NumericalError:  # the club missed the ball: the stroke counts, the ball stays
             return False, "at_rest", self._ball.copy(), np.zeros((0, 2)), (direction, 0.0)
-        return r.sunk, r.end, np.asarray(r.rest_position), r.trajectory[:, 1:3], tuple(r.launch)
+        launch = (math.remainder(r.launch[0] + r.aim, 2.0 * math.pi), r.launch[1])  # the base's frame -> world
+        return r.sunk, r.end, np.asarray(r.rest_position), r.trajectory[:, 1:3], launch
 
     def step(self, action):
         """Plays one stroke. Returns (obs, reward, terminated, truncated, info)."""
