@@ -64,7 +64,7 @@ def main():
     args = p.parse_args()
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    planner = planner_rows(args.configs.split(","), args.players.split(","), args.episodes)
+    planner = planner_rows([c for c in args.configs.split(",") if c], args.players.split(","), args.episodes)
     checkpoints = [int(c) for c in args.checkpoints.split(",")]
     curves = []
     start = time.perf_counter()
