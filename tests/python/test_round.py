@@ -138,7 +138,11 @@ def test_a_numpy_learner_runs_and_records_its_checkpoints():
     rows = learning_curve(env, checkpoints=[20, 60], seed=0, test_seeds=range(2), episodes=1)
     assert [r["strokes_played"] for r in rows] == [20, 60]
     assert all(r["spent"] <= r["strokes_played"] and 1 <= r["mean_strokes"] <= 4 for r in rows)
-    assert LinearRoundPolicy(env).dim == 10
+    policy = LinearRoundPolicy(env)
+    assert policy.dim == 10
+    theta = np.zeros(10)
+    theta[4], theta[9] = 1.0, -1.0   # the biases: the direction scaled by 0.1, the speed not
+    assert np.allclose(policy.act(theta, env.reset(seed=0)[0]), [0.1, -1.0])
 
 
 # ---- PuttFast-v0 and the arm-faithful action
