@@ -5,15 +5,20 @@
     obs, info = env.reset(seed=0)
     obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
 
-Registered ids (`REGISTERED`): "minigolf/Putt-v0" (the WAM hits the ball) and
-"minigolf/PuttBall-v0" (the ball alone, fast), both with a normalised action space and shaped
-rewards, `max_episode_steps=1`.
+Registered ids (`REGISTERED`, `ENTRY_POINTS`): "minigolf/Putt-v0" (the WAM hits the ball),
+"minigolf/PuttBall-v0" (the ball alone, MuJoCo) and "minigolf/PuttFast-v0" (the ball alone on the
+planning path, sim::fast_putt), with a normalised action space and shaped rewards,
+`max_episode_steps=1`; and "minigolf/Round-v0" (minigolf.round_env.RoundEnv: a hole stroke by
+stroke). `make_vec` makes vector envs with same-step autoreset (gymnasium >= 1.1).
 
-Observation (float32): the coordinates of xi = hole - tee [m] that vary over the environment's
-situations (`observation_names`: "xi_x", "xi_y"; a coordinate that is the same for every situation,
-as xi_x on the flat field's line, is left out: a zero-width dimension breaks rescaling wrappers),
-then the field's index when there are several fields (or observe_field=True). A region of a single
-hole keeps both coordinates, widened by 1 cm each way. info["xi"] always holds both.
+Observation (float32, `observation_names`), observation="fields" (default): xi = hole - tee [m]
+(xi_x, xi_y) and a one-hot of the field (field_<name> per shipped field, field_other), the same
+layout and bounds (the union of the shipped fields' situations and this env's) on every field.
+observation="varying": the coordinates of xi that vary over the environment's situations (a
+constant one, as xi_x on the flat field's line, is left out: a zero-width dimension breaks
+rescaling wrappers), then the field's index when there are several fields (or
+observe_field=True); a region of a single hole keeps both, widened by 1 cm each way. info["xi"]
+always holds both.
 Action (float32): (theta [rad], v [m/s]) inside the module's safe envelope (the arm: hitting angle
 and club speed; mode="ball": the ball's launch angle and speed, the same bounds), or, with
 normalize_actions=True, [-1, 1]^2 mapped linearly onto it (-1 and 1 exactly onto its ends). Actions
