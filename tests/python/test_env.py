@@ -427,7 +427,8 @@ def test_gymnasium_vector_envs_sync_and_async():
     obs_s, _ = sync.reset(seed=seeds)
     actions = np.array([[0.1, 0.0], [-0.2, 0.3]], dtype=np.float32)
     out_s = sync.step(actions)
-    asyn = gym.vector.AsyncVectorEnv([lambda: gym.make("minigolf/PuttBall-v0")] * 2, context="spawn")
+    # a spawned child has not imported minigolf: "minigolf:" imports it before the lookup
+    asyn = gym.vector.AsyncVectorEnv([lambda: gym.make("minigolf:minigolf/PuttBall-v0")] * 2, context="spawn")
     obs_a, _ = asyn.reset(seed=seeds)
     out_a = asyn.step(actions)
     assert np.array_equal(obs_s, obs_a) and np.array_equal(out_s[1], out_a[1])
