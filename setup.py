@@ -6,6 +6,10 @@ built. Everything setuptools writes (build_lib, bdist dirs, egg-info) also goes 
 ./build, the developers' CMake build, is not touched. The package is src/python/minigolf (all its
 modules) plus the repository's data/ as minigolf/data (src/python/minigolf/_paths.py uses it).
 
+MINIGOLF_EXTENSION=/path/to/_minigolf.<abi>.so (a `_minigolf` target the CMake build already made,
+for this interpreter) is packaged as it is instead, with no second build: what the wheel test
+(tests/python/test_wheel.py under ctest) does with the build it runs in.
+
 Offline (Debian 12: python3-setuptools, python3-wheel, no PyPI), in a virtual environment:
     /usr/bin/python3 -m venv --system-site-packages .venv
     .venv/bin/python -m pip install --no-build-isolation .
@@ -51,6 +55,17 @@ class CMakeBuildExt(build_ext):
     def build_extension(self, ext):
         if ext.name != "minigolf._minigolf":
             return super().build_extension(ext)
+        suffix = sysconfig.get_config_var("EXT_SUFFIX") or ".so"
+        dest = pathlib.Path(self.get_ext_fullpath(ext.name))
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        prebuilt = os.environ.get("MINIGOLF_EXTENSION")
+        if prebuilt:  # one build of the extension, not two
+            p = pathlib.Path(prebuilt)
+            if not p.is_file() or p.name != "_minigolf" + suffix:
+                raise RuntimeError(f"MINIGOLF_EXTENSION: expected an existing _minigolf{suffix}, got '{prebuilt}'")
+            print(f"minigolf setup.py: packaging the prebuilt {p} (MINIGOLF_EXTENSION)", flush=True)
+            self.copy_file(str(p), str(dest))
+            return
         configure = ["cmake", "-S", str(ROOT), "-B", str(CMAKE_BUILD), "-DCMAKE_BUILD_TYPE=Release",
                      "-DMINIGOLF_BUILD_TESTS=OFF", "-DMINIGOLF_BUILD_BENCHMARKS=OFF",
                      f"-DPython3_EXECUTABLE={sys.executable}"]
@@ -69,13 +84,10 @@ class CMakeBuildExt(build_ext):
             subprocess.check_call(cmd, cwd=ROOT, env=env)
 
         built = sorted((CMAKE_BUILD / "python" / "minigolf").glob("_minigolf*.so"))
-        suffix = sysconfig.get_config_var("EXT_SUFFIX") or ".so"
         matching = [p for p in built if p.name == "_minigolf" + suffix]
         if not matching:
             raise RuntimeError(f"CMake built no _minigolf{suffix} in {CMAKE_BUILD / 'python' / 'minigolf'}"
                                f" (found: {[p.name for p in built]})")
-        dest = pathlib.Path(self.get_ext_fullpath(ext.name))
-        dest.parent.mkdir(parents=True, exist_ok=True)
         self.copy_file(str(matching[0]), str(dest))
 
 

@@ -97,6 +97,36 @@ std::array<double, 2> replace_ball(const field::Field& field, std::array<double,
   return p;
 }
 
+StrokeEnd end_of_stroke(const field::Field& field, const LaneRegion& region,
+                        std::array<double, 2> cup, std::array<double, 2> from, sim::PuttEnd end,
+                        std::array<double, 2> rest,
+                        const std::vector<std::array<double, 2>>& path) {
+  StrokeEnd e;
+  e.left_lane = end == sim::PuttEnd::kLeftLane || !on_lane(field, rest) || !region.contains(rest);
+  std::array<double, 2> ball = rest;
+  if (e.left_lane) {
+    ball = replace_ball(field, region.last_in_play(path, from));
+    if (!region.contains(ball)) ball = from;  // put back where it was played from
+  } else {
+    try {
+      system::check_ball_position(field, ball, "ball");
+    } catch (const InputError&) {
+      ball = replace_ball(field, ball);  // resting against a border or wall: 1 cm off it
+    }
+  }
+  // A ball resting over the cup's rim but not in: nudge it off the rim onto the lane. The cup is
+  // where the world has it (the plant's hole offset), not where the robot sees it.
+  const double gap = std::hypot(ball[0] - cup[0], ball[1] - cup[1]);
+  const double need = 0.5 * field.hole.diameter + field.ball.radius + 1e-3;
+  if (gap < need) {
+    const double ux = gap > 1e-9 ? (ball[0] - cup[0]) / gap : 1.0;
+    const double uy = gap > 1e-9 ? (ball[1] - cup[1]) / gap : 0.0;
+    ball = replace_ball(field, {cup[0] + ux * need, cup[1] + uy * need});
+  }
+  e.next = ball;
+  return e;
+}
+
 RoundResult play_round(const Course& course, const control::ModuleConfig& config,
                        const plant::Plant& plant, const RoundOptions& options, ImaginedCache* cache,
                        const std::function<void(int, const StrokeRecord&)>& on_stroke) {
@@ -289,32 +319,13 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
       s.sunk = out.sunk;
       s.rest = out.rest_position;
       for (const auto& p : out.trajectory) s.path.push_back({p.x, p.y});
-      s.left_lane =
-          !out.sunk && (out.end == sim::PuttEnd::kLeftLane || !on_lane(field, out.rest_position) ||
-                        !region.contains(out.rest_position));
       hr.sunk = out.sunk;
       if (!hr.sunk) {
-        ball = out.rest_position;
-        if (s.left_lane) {
-          ball = replace_ball(field, region.last_in_play(s.path, s.ball));
-          if (!region.contains(ball)) ball = s.ball;  // put back where it was played from
-          ++hr.strokes;                               // the penalty stroke
-        } else {
-          try {
-            system::check_ball_position(field, ball, "ball");
-          } catch (const InputError&) {
-            ball = replace_ball(field, ball);  // resting against a border or wall: 1 cm off it
-          }
-        }
-        // A ball resting over the cup's rim but not in: nudge it off the rim onto the lane. The
-        // cup is where the world has it (the plant's hole offset), not where the robot sees it.
-        const double gap = std::hypot(ball[0] - cup[0], ball[1] - cup[1]);
-        const double need = 0.5 * field.hole.diameter + field.ball.radius + 1e-3;
-        if (gap < need) {
-          const double ux = gap > 1e-9 ? (ball[0] - cup[0]) / gap : 1.0;
-          const double uy = gap > 1e-9 ? (ball[1] - cup[1]) / gap : 0.0;
-          ball = replace_ball(field, {cup[0] + ux * need, cup[1] + uy * need});
-        }
+        const StrokeEnd e =
+            end_of_stroke(field, region, cup, s.ball, out.end, out.rest_position, s.path);
+        s.left_lane = e.left_lane;
+        ball = e.next;
+        if (s.left_lane) ++hr.strokes;  // the penalty stroke
       }
       hr.putts.push_back(s);
       if (on_stroke) on_stroke(static_cast<int>(h), hr.putts.back());

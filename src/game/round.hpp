@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "game/course.hpp"
+#include "game/lane_region.hpp"
 #include "game/planner.hpp"
 #include "plant/plant.hpp"
 
@@ -116,5 +117,19 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
 
 /// Where a ball that left the lane at `p` is put back (see the file comment).
 std::array<double, 2> replace_ball(const field::Field& field, std::array<double, 2> p);
+
+/// The round's rules after one stroke that did not sink: whether the ball is out of play (it left
+/// the lane, or stopped outside `region`: a penalty stroke follows) and where the next stroke is
+/// played from (put back at the last point of `path` in play; off a border or wall it rests
+/// against; off the rim of the cup really at `cup`). `from`: where the stroke was played from
+/// [m]; `rest`: where it stopped [m]; `path`: the ball's path [m]. play_round plays by it; the
+/// Python Round environment too.
+struct StrokeEnd {
+  bool left_lane = false;            ///< a penalty stroke follows
+  std::array<double, 2> next{0, 0};  ///< [m] where the ball lies for the next stroke
+};
+StrokeEnd end_of_stroke(const field::Field& field, const LaneRegion& region,
+                        std::array<double, 2> cup, std::array<double, 2> from, sim::PuttEnd end,
+                        std::array<double, 2> rest, const std::vector<std::array<double, 2>>& path);
 
 }  // namespace mg::game

@@ -50,4 +50,5 @@ PYBIND11_MODULE(_minigolf, m) {
   python::bind_learners(m);
   python::bind_render(m);
   python::bind_game(m);
+  python::bind_round(m);
 }

@@ -127,5 +127,7 @@ void bind_learners(
     py::module_& m);  ///< Model, train, load_dataset, HittingModel (learner_bindings.cpp)
 void bind_render(py::module_& m);  ///< Renderer (render_bindings.cpp)
 void bind_game(py::module_& m);    ///< play, courses (game_bindings.cpp)
+/// load_course, LaneRegion, end_of_stroke, plan_stroke, LaunchSkill, fast_putt (round_bindings.cpp)
+void bind_round(py::module_& m);
 
 }  // namespace mg::python

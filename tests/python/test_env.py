@@ -120,12 +120,12 @@ def test_check_env_rules(kwargs):
 
 
 def test_observation_action_and_reward():
-    env = PuttEnv(field="flat", mode="ball")
+    env = PuttEnv(field="flat", mode="ball", observation="varying")
     system = minigolf.System(field="flat")
     obs, info = env.reset(seed=3)
     tee = np.array(system.field.tee)
     xi = np.array(info["hole"]) - tee
-    assert info["xi"] == tuple(xi)
+    assert np.array_equal(info["xi"], xi) and info["xi"].dtype == np.float64
     assert env.observation_names == ("xi_y",)  # xi_x is 2.0 for every situation of the flat line
     assert obs.dtype == np.float32 and obs.shape == (1,) and obs[0] == np.float32(xi[1])
     aim = float(np.arctan2(xi[1], xi[0]))
@@ -138,7 +138,7 @@ def test_observation_action_and_reward():
     env.reset(seed=3)
     _, _, _, _, info = env.step(np.array([10.0, -1.0]))  # clipped into the safe envelope
     e = system.envelope
-    assert info["clipped"] and info["action"] == (e["angle_max"], e["speed_min"])
+    assert info["clipped"] and tuple(info["action"]) == (e["angle_max"], e["speed_min"])
     env.reset()
     for bad in (np.array([np.nan, 1.0]), np.zeros(3), "left", None):
         with pytest.raises(ValueError, match="action"):
@@ -146,12 +146,29 @@ def test_observation_action_and_reward():
     with pytest.raises(ValueError, match="mode"):
         PuttEnv(mode="fly")
     # the field id in the observation with several fields
-    multi = PuttEnv(field=["flat", "regular-hill"], mode="ball")
+    multi = PuttEnv(field=["flat", "regular-hill"], mode="ball", observation="varying")
     assert multi.observation_names[-1] == "field"
     seen = {multi.reset(seed=s)[0][-1] for s in range(20)}
     assert seen == {0.0, 1.0}
     obs, _ = multi.reset(options={"field": 1, "hole": (2.0, 0.05)})
     assert obs[-1] == 1.0
+
+
+def test_one_observation_layout_for_every_field():
+    """The default layout: xi_x, xi_y and the field's one-hot, the same names and bounds on every
+    shipped field (a policy moves between fields); its xi is the hole's."""
+    names = tuple(sorted(minigolf.Field.shipped()))
+    envs = [PuttEnv(field=n, mode="ball") for n in names] + [PuttEnv(field=list(names[:2]), mode="ball")]
+    layout = ("xi_x", "xi_y") + tuple(f"field_{n}" for n in names) + ("field_other",)
+    for env in envs:
+        assert env.observation_names == layout and env.observation_space == envs[0].observation_space
+    for n, env in zip(names, envs):
+        obs, info = env.reset(seed=2)
+        assert np.array_equal(obs[:2], np.float32(info["xi"]))
+        onehot = obs[2:]
+        assert onehot.sum() == 1.0 and onehot[names.index(n)] == 1.0
+    multi = envs[-1]
+    assert {tuple(multi.reset(seed=s)[0][2:4]) for s in range(10)} == {(1.0, 0.0), (0.0, 1.0)}
 
 
 def test_spaces_are_float32_without_zero_width_dimensions():
@@ -162,8 +179,10 @@ def test_spaces_are_float32_without_zero_width_dimensions():
                 assert space.dtype == np.float32
                 assert np.all(space.high - space.low > 0), (name, space)
             assert len(env.observation_names) == env.observation_space.shape[0]
-            one = PuttEnv(field=name, mode=mode, observe_field=True)  # a field index of one field
+            one = PuttEnv(field=name, mode=mode, observe_field=True, observation="varying")  # one field's index
             assert np.all(one.observation_space.high - one.observation_space.low > 0)
+            varying = PuttEnv(field=name, mode=mode, observation="varying")
+            assert np.all(varying.observation_space.high - varying.observation_space.low > 0)
             # every action of the space is a putt inside the envelope, exactly
             e = env.systems[0].envelope
             assert env.action_space.low[0] >= e["angle_min"] and env.action_space.high[0] <= e["angle_max"]
@@ -237,7 +256,7 @@ def test_a_plant_is_the_world_the_episodes_happen_in(tmp_path):
     real.reset(seed=1), nominal.reset(seed=1)
     _, _, _, _, ir = real.step(a)
     _, _, _, _, inom = nominal.step(a)
-    assert ir["hole"] == inom["hole"]  # the robot sees the same situation
+    assert np.array_equal(ir["hole"], inom["hole"])  # the robot sees the same situation
     assert ir["closest_approach"] != inom["closest_approach"]  # the ball rolls in another world
     with pytest.raises(ValueError, match="plant"):
         PuttEnv(field="flat", mode="ball", plant=str(tmp_path / "missing.yaml"))
@@ -310,9 +329,9 @@ def test_reset_checks_the_hole_against_the_situations_and_widens_on_request():
     with pytest.raises(ValueError, match="on flat"):
         multi.reset(seed=0, options={"field": 0, "hole": (2.1, 0.2)})
     wide = PuttEnv(field="flat", mode="ball", situations="box:1.5,2.5:-0.3,0.3:3,3")
-    assert wide.observation_names == ("xi_x", "xi_y")
+    assert wide.observation_names[:2] == ("xi_x", "xi_y")
     obs, info = wide.reset(seed=0, options={"hole": (2.5, 0.0)})
-    assert wide.observation_space.contains(obs) and info["hole"] == (2.5, 0.0)
+    assert wide.observation_space.contains(obs) and tuple(info["hole"]) == (2.5, 0.0)
     holes = np.array([wide.reset(seed=s)[1]["hole"] for s in range(40)])
     assert holes[:, 0].min() >= 1.5 and holes[:, 0].max() <= 2.5 and np.ptp(holes[:, 0]) > 0.5
     with pytest.raises(ValueError, match="situations"):
@@ -321,7 +340,8 @@ def test_reset_checks_the_hole_against_the_situations_and_widens_on_request():
 
 def test_registered_ids_without_gymnasium():
     from minigolf.env import REGISTERED, MAX_EPISODE_STEPS
-    assert set(REGISTERED) == {"minigolf/Putt-v0", "minigolf/PuttBall-v0"} and MAX_EPISODE_STEPS == 1
+    assert set(REGISTERED) == {"minigolf/Putt-v0", "minigolf/PuttBall-v0", "minigolf/PuttFast-v0",
+                               "minigolf/Round-v0"} and MAX_EPISODE_STEPS == 1
     arm, ball = minigolf.make("minigolf/Putt-v0"), minigolf.make("minigolf/PuttBall-v0")
     assert arm.mode == "arm" and ball.mode == "ball"
     for env in (arm, ball):
@@ -337,7 +357,7 @@ def episode_bits(env, seeds, actions):
     for seed, a in zip(seeds, actions):
         obs, _ = env.reset(seed=seed)
         o, r, term, trunc, info = env.step(a)
-        out.append((obs.tobytes(), o.tobytes(), r, term, trunc, info["closest_approach"], info["rest_position"]))
+        out.append((obs.tobytes(), o.tobytes(), r, term, trunc, info["closest_approach"], tuple(info["rest_position"])))
     return out
 
 
@@ -353,7 +373,7 @@ def test_pickle_and_deepcopy_rebuild_the_same_environment():
         assert c.systems[0] is not env.systems[0]
         assert data_equivalence(ref, c.step(a))
     next_hole = env.reset()[1]["hole"]
-    assert all(c.reset()[1]["hole"] == next_hole for c in clones)
+    assert all(np.array_equal(c.reset()[1]["hole"], next_hole) for c in clones)
     seeds, actions = [1, 2, 3], [np.array([0.1, -0.3]), np.array([-0.5, 0.2]), np.array([0.0, 0.0])]
     assert episode_bits(pickle.loads(pickle.dumps(env)), seeds, actions) == episode_bits(env, seeds, actions)
 
@@ -407,7 +427,8 @@ def test_gymnasium_vector_envs_sync_and_async():
     obs_s, _ = sync.reset(seed=seeds)
     actions = np.array([[0.1, 0.0], [-0.2, 0.3]], dtype=np.float32)
     out_s = sync.step(actions)
-    asyn = gym.vector.AsyncVectorEnv([lambda: gym.make("minigolf/PuttBall-v0")] * 2, context="spawn")
+    # a spawned child has not imported minigolf: "minigolf:" imports it before the lookup
+    asyn = gym.vector.AsyncVectorEnv([lambda: gym.make("minigolf:minigolf/PuttBall-v0")] * 2, context="spawn")
     obs_a, _ = asyn.reset(seed=seeds)
     out_a = asyn.step(actions)
     assert np.array_equal(obs_s, obs_a) and np.array_equal(out_s[1], out_a[1])

@@ -62,7 +62,7 @@ def test_rgb_array_frames_and_the_same_putt_as_without_rendering(mode):
     _, ref = run(plain, 2, action)
     _, got = run(drawn, 2, action)
     for k in ("closest_approach", "rest_position", "end", "sunk"):
-        assert ref[4][k] == got[4][k], k  # rendering never changes a putt
+        assert np.array_equal(ref[4][k], got[4][k]), k  # rendering never changes a putt
     assert ref[1] == got[1]
     end = drawn.render()
     assert np.count_nonzero(np.any(end != start, axis=2)) > 20
@@ -145,3 +145,24 @@ def test_gymnasium_check_env_with_its_render_checks():
         pytest.skip("gymnasium is not installed (not in Debian 12); the rules above are its copy")
     env = gym.make("minigolf/PuttBall-v0", render_mode="rgb_array", render_size=SIZE)
     check_env(env.unwrapped)  # renders every declared mode through env.spec.make
+
+
+@pytest.mark.parametrize("player", ["fast", "arm"])
+def test_the_round_environment_draws_the_lane_the_ball_and_its_path(player):
+    from minigolf.round_env import RoundEnv
+    env = RoundEnv(field="bank-shot", player=player, render_mode="rgb_array", render_size=SIZE)
+    assert env.metadata["render_fps"] > 0 and env.metadata["render_modes"] == ["rgb_array"]
+    assert RoundEnv(field="bank-shot", player=player).render() is None
+    env.reset(seed=0)
+    start = env.render()
+    assert start.shape == (SIZE[1], SIZE[0], 3) and start.dtype == np.uint8
+    plain = RoundEnv(field="bank-shot", player=player)
+    plain.reset(seed=0)
+    a = np.array([0.1, -0.3], dtype=np.float32)
+    ref, got = plain.step(a), env.step(a)
+    assert np.array_equal(ref[0], got[0]) and ref[1] == got[1]  # drawing never changes a stroke
+    after = env.render()
+    assert np.count_nonzero(np.any(after != start, axis=2)) > 20  # the ball moved, its path drawn
+    env.close()
+    assert np.array_equal(env.render(), after)  # a closed env draws again
+    env.close()

@@ -4,8 +4,9 @@ fresh virtual environment (with the system site packages, for Debian's numpy) an
 outside the repository, with PYTHONPATH and MINIGOLF_DATA_DIR unset: the package, its shipped data,
 a putt and examples/train_policy.py all come from the virtual environment.
 
-The wheel's extension is built by CMake in <source>/build/pip/cmake (ccache makes a rebuild quick).
-ctest sets MINIGOLF_SOURCE_DIR (tests/python/CMakeLists.txt, test python_wheel)."""
+The wheel's extension is the one the CMake build made when MINIGOLF_EXTENSION names it (ctest sets it
+and MINIGOLF_SOURCE_DIR: tests/python/CMakeLists.txt, test python_wheel; setup.py packages it as it
+is), else pip builds it with CMake in <source>/build/pip/cmake (ccache makes a rebuild quick)."""
 import json
 import os
 import pathlib
@@ -88,6 +89,10 @@ def test_wheel_contents(installed):
             for p in (ROOT / "data").rglob("*") if p.is_file()}
     assert data and data == {n for n in names if n.startswith("minigolf/data/")}
     assert any(re.fullmatch(r"minigolf/_minigolf\..*\.so", n) for n in names), sorted(names)
+    prebuilt = os.environ.get("MINIGOLF_EXTENSION")
+    if prebuilt:  # the build's extension, packaged as it is (no second build)
+        so = [n for n in names if re.fullmatch(r"minigolf/_minigolf\..*\.so", n)][0]
+        assert zipfile.ZipFile(wheel).read(so) == pathlib.Path(prebuilt).read_bytes()
 
 
 def test_import_comes_from_the_venv(installed):

@@ -18,6 +18,9 @@ from ._minigolf import (  # noqa: F401
     Example,
     Field,
     HittingModel,
+    ImaginedCache,
+    LaneRegion,
+    LaunchSkill,
     Model,
     NumericalError,
     PuttResult,
@@ -26,11 +29,19 @@ from ._minigolf import (  # noqa: F401
     SystemData,
     Renderer,
     World,
+    calibrate_launch_skill,
+    club_speed_range,
     courses,
+    end_of_stroke,
+    fast_putt,
+    line_blocked,
+    load_course,
     load_dataset,
     mpi_built,
+    plan_stroke,
     play,
     read_plant_file,
+    real_hole,
     train,
 )
 
@@ -43,6 +54,7 @@ def putt(angle, speed, field="flat", ball_only=False, **kwargs):
 
 
 from . import env  # noqa: E402,F401
-from .env import make  # noqa: E402,F401
+from . import round_env  # noqa: E402,F401
+from .env import make, make_vec  # noqa: E402,F401
 
 env.register_envs()

@@ -5,15 +5,20 @@
     obs, info = env.reset(seed=0)
     obs, reward, terminated, truncated, info = env.step(env.action_space.sample())
 
-Registered ids (`REGISTERED`): "minigolf/Putt-v0" (the WAM hits the ball) and
-"minigolf/PuttBall-v0" (the ball alone, fast), both with a normalised action space and shaped
-rewards, `max_episode_steps=1`.
+Registered ids (`REGISTERED`, `ENTRY_POINTS`): "minigolf/Putt-v0" (the WAM hits the ball),
+"minigolf/PuttBall-v0" (the ball alone, MuJoCo) and "minigolf/PuttFast-v0" (the ball alone on the
+planning path, sim::fast_putt), with a normalised action space and shaped rewards,
+`max_episode_steps=1`; and "minigolf/Round-v0" (minigolf.round_env.RoundEnv: a hole stroke by
+stroke). `make_vec` makes vector envs with same-step autoreset (gymnasium >= 1.1).
 
-Observation (float32): the coordinates of xi = hole - tee [m] that vary over the environment's
-situations (`observation_names`: "xi_x", "xi_y"; a coordinate that is the same for every situation,
-as xi_x on the flat field's line, is left out: a zero-width dimension breaks rescaling wrappers),
-then the field's index when there are several fields (or observe_field=True). A region of a single
-hole keeps both coordinates, widened by 1 cm each way. info["xi"] always holds both.
+Observation (float32, `observation_names`), observation="fields" (default): xi = hole - tee [m]
+(xi_x, xi_y) and a one-hot of the field (field_<name> per shipped field, field_other), the same
+layout and bounds (the union of the shipped fields' situations and this env's) on every field.
+observation="varying": the coordinates of xi that vary over the environment's situations (a
+constant one, as xi_x on the flat field's line, is left out: a zero-width dimension breaks
+rescaling wrappers), then the field's index when there are several fields (or
+observe_field=True); a region of a single hole keeps both, widened by 1 cm each way. info["xi"]
+always holds both.
 Action (float32): (theta [rad], v [m/s]) inside the module's safe envelope (the arm: hitting angle
 and club speed; mode="ball": the ball's launch angle and speed, the same bounds), or, with
 normalize_actions=True, [-1, 1]^2 mapped linearly onto it (-1 and 1 exactly onto its ends). Actions
@@ -55,12 +60,21 @@ except ImportError:  # the same interface without it
 REGISTERED = {
     "minigolf/Putt-v0": dict(mode="arm", normalize_actions=True, reward="shaped"),
     "minigolf/PuttBall-v0": dict(mode="ball", normalize_actions=True, reward="shaped"),
+    "minigolf/PuttFast-v0": dict(mode="fast", normalize_actions=True, reward="shaped"),
+    "minigolf/Round-v0": dict(field="bank-shot", player="ball"),
+}
+#: Each id's entry point and Gymnasium `max_episode_steps` (None: the environment ends episodes).
+ENTRY_POINTS = {
+    "minigolf/Putt-v0": ("minigolf.env:PuttEnv", 1),
+    "minigolf/PuttBall-v0": ("minigolf.env:PuttEnv", 1),
+    "minigolf/PuttFast-v0": ("minigolf.env:PuttEnv", 1),
+    "minigolf/Round-v0": ("minigolf.round_env:RoundEnv", None),
 }
 MAX_EPISODE_STEPS = 1  # one putt per episode
 
 _CONSTANT = 1e-9   # [m] a coordinate spanning less is constant over the situations
 _WIDEN = 0.01      # [m] each way, for a region of a single hole
-_UNPICKLED = ("systems", "_data", "_regions", "_renderer")
+_UNPICKLED = ("systems", "_data", "_regions", "_renderer", "_skills")
 
 
 class Box:
@@ -127,6 +141,30 @@ class Box:
         return f"Box({self.low}, {self.high}, {self.shape}, {self.dtype})"
 
 
+_shipped: dict = {}
+
+
+def _shipped_field_names() -> tuple:
+    """The shipped fields' names, sorted (cached)."""
+    if "names" not in _shipped:
+        _shipped["names"] = tuple(sorted(_minigolf.Field.shipped()))
+    return _shipped["names"]
+
+
+def shipped_xi_bounds() -> tuple:
+    """(low, high) of xi = hole - tee [m] over every shipped field's situations (cached)."""
+    if "xi" not in _shipped:
+        lows, highs = [], []
+        for n in _shipped_field_names():
+            f = _minigolf.Field.load(n)
+            b, t = np.array(f.region("").bounds), np.asarray(f.tee, dtype=np.float64)
+            lows.append(b[[0, 2]] - t)
+            highs.append(b[[1, 3]] - t)
+        _shipped["xi"] = (np.min(lows, axis=0), np.max(highs, axis=0))
+    low, high = _shipped["xi"]
+    return low.copy(), high.copy()
+
+
 _Base = _gym.Env if _gym is not None else object
 _Space = _GymBox if _GymBox is not None else Box
 
@@ -151,12 +189,21 @@ class PuttEnv(_Base):
     """One putt per episode on the simulated WAM (see the module docstring).
 
     field: a shipped field name or path, or a sequence of them (each episode draws one).
-    mode: "arm" (the full system: the WAM hits the ball) or "ball" (the ball alone: fast).
+    mode: "arm" (the full system: the WAM hits the ball), "ball" (the ball alone, MuJoCo) or "fast"
+        (the ball alone on the planning path, sim::fast_putt: MuJoCo's outcome, ~10x faster).
+    club_action: with mode "ball" or "fast", the action is the arm's (hitting angle [rad], club
+        speed [m/s]) and becomes a launch through the robot's launch skill (calibrated with
+        `skill_putts` arm putts from the tee, as `minigolf play` does; "fast" also starts the ball
+        as it leaves the club): a policy trained on it plays Putt-v0's actions.
     situations: where holes are drawn (a `--situations` spec, e.g. "box:1.5,2.5:-0.3,0.3:3,3";
         default: each field's own region).
     normalize_actions: the action space is [-1, 1]^2, mapped linearly onto the safe envelope.
     reward: "sparse" (1 sunk / 0) or "shaped" (1 sunk, else -closest_approach / reward_scale [m]).
-    observe_field: append the field's index to the observation (default: with several fields).
+    observation: "fields" (default): one layout on every field: xi_x, xi_y and a one-hot of the
+        field (`field_<name>` per shipped field, `field_other`), bounds the union of the shipped
+        fields' situations and this env's; "varying": the coordinates of xi that vary over this
+        env's situations, then the field's index with several fields (or observe_field=True).
+    observe_field: ("varying" only) append the field's index (default: with several fields).
     config, hitting_model, plant: as for `minigolf.System` (plant: the world as it really is).
     max_duration: of the ball's roll [s].
     render_mode: None, "rgb_array", "rgb_array_list" or "human"; render_size (width, height)
@@ -169,14 +216,21 @@ class PuttEnv(_Base):
                  config: str = "", hitting_model: str = "", max_duration: float = 30.0,
                  render_mode: Optional[str] = None, plant: str = "", normalize_actions: bool = False,
                  reward: str = "sparse", reward_scale: float = 1.0, situations: str = "",
-                 render_size: Sequence[int] = (640, 480), camera: str = "overview"):
+                 render_size: Sequence[int] = (640, 480), camera: str = "overview",
+                 club_action: bool = False, skill_putts: int = 10, observation: str = "fields"):
         self._init_kwargs = dict(field=field, mode=mode, observe_field=observe_field, config=config,
                                  hitting_model=hitting_model, max_duration=max_duration,
                                  render_mode=render_mode, plant=plant, normalize_actions=normalize_actions,
                                  reward=reward, reward_scale=reward_scale, situations=situations,
-                                 render_size=tuple(render_size), camera=camera)
-        if mode not in ("arm", "ball"):
-            raise ValueError(f"PuttEnv: mode: expected 'arm' or 'ball', got '{mode}'")
+                                 render_size=tuple(render_size), camera=camera, club_action=club_action,
+                                 skill_putts=skill_putts, observation=observation)
+        if observation not in ("fields", "varying"):
+            raise ValueError(f"PuttEnv: observation: expected 'fields' or 'varying', got '{observation}'")
+        self.observation_layout = observation
+        if mode not in ("arm", "ball", "fast"):
+            raise ValueError(f"PuttEnv: mode: expected 'arm', 'ball' or 'fast', got '{mode}'")
+        if club_action and mode == "arm":
+            raise ValueError("PuttEnv: club_action: only with mode 'ball' or 'fast' (the arm's actions are club hits)")
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"PuttEnv: render_mode: expected None or one of {self.metadata['render_modes']}, "
                              f"got '{render_mode}'")
@@ -196,6 +250,7 @@ class PuttEnv(_Base):
             raise ValueError("PuttEnv: field: expected at least one field")
         self.render_mode = render_mode
         self.mode = mode
+        self.club_action = bool(club_action)
         self.reward_mode = reward
         self.reward_scale = float(reward_scale)
         self.max_duration = float(max_duration)
@@ -221,8 +276,44 @@ class PuttEnv(_Base):
         self._data = [s.make_data() for s in self.systems]
         self._regions = [s.field.region(k["situations"]) for s in self.systems]
         self._renderer = None
+        self._skills = None
+        if k.get("club_action"):
+            self._skills = [_minigolf.calibrate_launch_skill(s, putts=k.get("skill_putts", 10)) for s in self.systems]
 
     def _set_spaces(self):
+        if self.observation_layout == "fields":
+            self._set_field_spaces()
+        else:
+            self._set_varying_spaces()
+        e = self.systems[0].envelope
+        self._envelope_low = np.array([e["angle_min"], e["speed_min"]], dtype=np.float64)
+        self._envelope_high = np.array([e["angle_max"], e["speed_max"]], dtype=np.float64)
+        if self.normalize_actions:
+            alow, ahigh = np.full(2, -1.0, np.float32), np.full(2, 1.0, np.float32)
+        else:
+            alow, ahigh = _float32_inside(self._envelope_low, self._envelope_high)
+        self.action_space = _Space(low=alow, high=ahigh, dtype=np.float32)
+
+    def _set_field_spaces(self):
+        low, high = shipped_xi_bounds()
+        for r, s in zip(self._regions, self.systems):  # this env's situations too
+            b, t = np.array(r.bounds), np.asarray(s.field.tee, dtype=np.float64)
+            low = np.minimum(low, b[[0, 2]] - t)
+            high = np.maximum(high, b[[1, 3]] - t)
+        names = _shipped_field_names()
+        self._onehot = []
+        for s in self.systems:
+            v = np.zeros(len(names) + 1)
+            shipped = s.field.name in names and _minigolf.Field.load(s.field.name).source == s.field.source
+            v[names.index(s.field.name) if shipped else len(names)] = 1.0
+            self._onehot.append(v)
+        self._kept = np.array([0, 1])
+        self.observation_names = ("xi_x", "xi_y") + tuple(f"field_{n}" for n in names) + ("field_other",)
+        olow, ohigh = _float32_around(np.concatenate([low, np.zeros(len(names) + 1)]),
+                                      np.concatenate([high, np.ones(len(names) + 1)]))
+        self.observation_space = _Space(low=olow, high=ohigh, dtype=np.float32)
+
+    def _set_varying_spaces(self):
         tees = [np.asarray(s.field.tee, dtype=np.float64) for s in self.systems]
         lows = [np.array(r.bounds)[[0, 2]] - t for r, t in zip(self._regions, tees)]
         highs = [np.array(r.bounds)[[1, 3]] - t for r, t in zip(self._regions, tees)]
@@ -242,14 +333,6 @@ class PuttEnv(_Base):
         self.observation_names = tuple(names)
         olow, ohigh = _float32_around(low, high)
         self.observation_space = _Space(low=olow, high=ohigh, dtype=np.float32)
-        e = self.systems[0].envelope
-        self._envelope_low = np.array([e["angle_min"], e["speed_min"]], dtype=np.float64)
-        self._envelope_high = np.array([e["angle_max"], e["speed_max"]], dtype=np.float64)
-        if self.normalize_actions:
-            alow, ahigh = np.full(2, -1.0, np.float32), np.full(2, 1.0, np.float32)
-        else:
-            alow, ahigh = _float32_inside(self._envelope_low, self._envelope_high)
-        self.action_space = _Space(low=alow, high=ahigh, dtype=np.float32)
 
     # ---- pickling: the System and its MuJoCo data are rebuilt from the constructor's arguments
     # and the plant's content (_plant_text)
@@ -272,6 +355,10 @@ class PuttEnv(_Base):
         def unwrapped(self):
             return self
 
+        def get_wrapper_attr(self, name: str):
+            """Gymnasium's Env.get_wrapper_attr without it (to_physical, from_physical, ...)."""
+            return getattr(self, name)
+
     # ---- the action and observation maps
     def to_physical(self, action) -> np.ndarray:
         """(theta [rad], v [m/s]) of an action (clipped into [-1, 1], or into the safe envelope)."""
@@ -293,7 +380,9 @@ class PuttEnv(_Base):
 
     def _observation(self) -> np.ndarray:
         obs = self._xi()[self._kept]
-        if self.observe_field:
+        if self.observation_layout == "fields":
+            obs = np.concatenate([obs, self._onehot[self._field]])
+        elif self.observe_field:
             obs = np.append(obs, float(self._field))
         return np.clip(obs.astype(np.float32), self.observation_space.low, self.observation_space.high)
 
@@ -347,7 +436,8 @@ class PuttEnv(_Base):
         self._frames = []
         if self.render_mode in ("rgb_array_list", "human"):
             self._emit(self._frame())
-        return self._observation(), {"hole": tuple(self._hole), "xi": tuple(self._xi()), "field": system.field.name}
+        return self._observation(), {"hole": self._hole.copy(), "xi": self._xi(), "field": system.field.name,
+                                     "field_index": self._field}
 
     def step(self, action):
         """Putts. Returns (obs, reward, terminated, truncated, info); the episode always terminates."""
@@ -366,21 +456,38 @@ class PuttEnv(_Base):
         else:
             clipped = bool(np.any(putt != a))
         system, data = self.systems[self._field], self._data[self._field]
-        info: dict[str, Any] = {"hole": tuple(self._hole), "xi": tuple(self._xi()), "field": system.field.name,
-                                "action": tuple(putt), "clipped": clipped}
+        info: dict[str, Any] = {"hole": self._hole.copy(), "xi": self._xi(), "field": system.field.name,
+                                "field_index": self._field, "action": np.array(putt), "clipped": clipped}
         record = 1.0 / self.metadata["render_fps"] / 2 if self.render_mode is not None else 0.0
-        try:
-            r = system.putt(float(putt[0]), float(putt[1]), hole=tuple(self._hole),
-                            ball_only=self.mode == "ball", max_duration=self.max_duration,
-                            record_interval=record, data=data)
-            sunk, approach = r.sunk, r.closest_approach
-            info.update(closest_approach=approach, rest_position=tuple(r.rest_position), end=r.end)
-            self._trajectory = r.trajectory if record > 0 else None
-        except _minigolf.NumericalError as e:  # the club did not reach the ball: a miss
-            sunk, approach = False, float(np.hypot(*self._xi()))
-            info.update(closest_approach=float("nan"), rest_position=tuple(system.field.tee), end="no contact",
-                        error=str(e))
+        club = None
+        if self._skills is not None:  # a club hit, launched as the robot's skill says
+            skill, hit = self._skills[self._field], putt
+            putt = np.array([hit[0] + skill.angle_offset(hit[1]), skill.launch_speed(hit[1])])
+            club = skill.club_launch(putt[1]) if self.mode == "fast" else None
+            info["club"] = np.array(hit)
+            info["action"] = np.array(putt)
+        if self.mode == "fast":
+            sunk, end, rest, approach, path = _minigolf.fast_putt(
+                system, float(putt[0]), float(putt[1]), hole=tuple(self._hole), club=club,
+                max_duration=self.max_duration, record_interval=record, data=data)
+            info.update(closest_approach=approach, rest_position=np.array(rest), end=end)
             self._trajectory = None
+            if record > 0:
+                z = np.asarray(system.field.height(path[:, 1], path[:, 2])) + system.field.ball_radius
+                self._trajectory = np.column_stack([path, z, np.zeros((len(path), 3))])
+        else:
+            try:
+                r = system.putt(float(putt[0]), float(putt[1]), hole=tuple(self._hole),
+                                ball_only=self.mode == "ball", max_duration=self.max_duration,
+                                record_interval=record, data=data)
+                sunk, approach = r.sunk, r.closest_approach
+                info.update(closest_approach=approach, rest_position=np.array(r.rest_position), end=r.end)
+                self._trajectory = r.trajectory if record > 0 else None
+            except _minigolf.NumericalError as e:  # the club did not reach the ball: a miss
+                sunk, approach = False, float(np.hypot(*self._xi()))
+                info.update(closest_approach=float("nan"), rest_position=np.array(system.field.tee), end="no contact",
+                            error=str(e))
+                self._trajectory = None
         if self.reward_mode == "sparse":
             parts = {"sunk": 1.0 if sunk else 0.0, "approach": 0.0}
         else:
@@ -489,14 +596,37 @@ def register_envs() -> bool:
         return False
     for env_id, kwargs in REGISTERED.items():
         if env_id not in _gym.registry:
-            _gym.register(id=env_id, entry_point="minigolf.env:PuttEnv", kwargs=dict(kwargs),
-                          max_episode_steps=MAX_EPISODE_STEPS)
+            entry, steps = ENTRY_POINTS[env_id]
+            _gym.register(id=env_id, entry_point=entry, kwargs=dict(kwargs), max_episode_steps=steps)
     return True
 
 
-def make(env_id: str, **kwargs) -> PuttEnv:
+def make_vec(env_id: str, num_envs: int = 1, vectorization_mode: str = "sync",
+             autoreset_mode: str = "same-step", **kwargs):
+    """gymnasium.make_vec with same-step autoreset by default: an ended episode is reset within
+    the step that ends it (its last observation and info in info["final_obs"], info["final_info"]),
+    so every vector step plays a putt. Gymnasium's own default (next-step) spends every second
+    vector step of the one-putt ids on resets (reward 0). autoreset_mode: "same-step",
+    "next-step" or "disabled". Needs gymnasium >= 1.1."""
+    if _gym is None:
+        raise ImportError("minigolf.make_vec: needs gymnasium (pip install gymnasium)")
+    from gymnasium.vector import AutoresetMode
+    modes = {"same-step": AutoresetMode.SAME_STEP, "next-step": AutoresetMode.NEXT_STEP,
+             "disabled": AutoresetMode.DISABLED}
+    if autoreset_mode not in modes:
+        raise ValueError(f"minigolf.make_vec: autoreset_mode: expected one of {sorted(modes)}, got '{autoreset_mode}'")
+    vector_kwargs = {"autoreset_mode": modes[autoreset_mode], **kwargs.pop("vector_kwargs", {})}
+    return _gym.make_vec(env_id, num_envs=num_envs, vectorization_mode=vectorization_mode,
+                         vector_kwargs=vector_kwargs, **kwargs)
+
+
+def make(env_id: str, **kwargs):
     """A registered environment without gymnasium (gymnasium.make adds its wrappers: the order
-    enforcer, the passive checker and the one-step time limit). kwargs override the id's."""
+    enforcer, the passive checker and, for the putts, the one-step time limit). kwargs override
+    the id's."""
     if env_id not in REGISTERED:
         raise ValueError(f"minigolf.make: unknown id '{env_id}' (expected one of {sorted(REGISTERED)})")
+    if ENTRY_POINTS[env_id][0].endswith(":RoundEnv"):
+        from .round_env import RoundEnv
+        return RoundEnv(**{**REGISTERED[env_id], **kwargs})
     return PuttEnv(**{**REGISTERED[env_id], **kwargs})
