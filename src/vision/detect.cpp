@@ -1,0 +1,116 @@
+#include "vision/detect.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+namespace mg::vision {
+
+struct Detector::Impl {
+  DetectorConfig config;
+  cv::Mat mask, labels, stats, centroids;
+};
+
+Detector::Detector(const DetectorConfig& config) : impl_(std::make_unique<Impl>()) {
+  impl_->config = config;
+}
+Detector::~Detector() = default;
+Detector::Detector(Detector&&) noexcept = default;
+Detector& Detector::operator=(Detector&&) noexcept = default;
+const DetectorConfig& Detector::config() const { return impl_->config; }
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Ball weight of a pixel in [0, 1]: 1 for clearly grey and bright, ramping to 0 over the
+/// saturation and value margins, so an anti-aliased rim pixel counts in proportion to the ball
+/// in it (sub-pixel centre).
+inline double ball_weight(const std::uint8_t* p, const DetectorConfig& c) {
+  const int lo = std::min({p[0], p[1], p[2]}), hi = std::max({p[0], p[1], p[2]});
+  if (hi == 0) return 0.0;
+  const double sat = static_cast<double>(hi - lo) / hi;
+  const double ws = std::clamp((c.ball_max_saturation + 0.2 - sat) / 0.3, 0.0, 1.0);
+  const double wv = std::clamp((hi - (c.ball_min_value - 30)) / 30.0, 0.0, 1.0);
+  return ws * wv;
+}
+inline double hole_weight(const std::uint8_t* p, const DetectorConfig& c) {
+  const int hi = std::max({p[0], p[1], p[2]});
+  return std::clamp(((c.hole_max_channel + 40) - hi) / 40.0, 0.0, 1.0);
+}
+
+template <typename Weight, typename Inside>
+Blob find(Detector::Impl& d, const viz::Image& img, const BlobQuery& q, Inside inside,
+          Weight weight) {
+  const int w = img.width, h = img.height;
+  if (d.mask.rows != h || d.mask.cols != w) d.mask.create(h, w, CV_8UC1);
+  for (int y = 0; y < h; ++y) {
+    std::uint8_t* m = d.mask.ptr<std::uint8_t>(y);
+    for (int x = 0; x < w; ++x) m[x] = inside(img.pixel(x, y)) ? 255 : 0;
+  }
+  const int n = cv::connectedComponentsWithStats(d.mask, d.labels, d.stats, d.centroids, 8, CV_32S);
+  Blob best;
+  double best_score = 1e18;
+  int best_label = -1;
+  for (int k = 1; k < n; ++k) {
+    const int* s = d.stats.ptr<int>(k);
+    const int bw = s[cv::CC_STAT_WIDTH], bh = s[cv::CC_STAT_HEIGHT], area = s[cv::CC_STAT_AREA];
+    const double r = std::sqrt(area / kPi);
+    if (r < q.min_radius || r > q.max_radius) continue;
+    if (area < d.config.min_fill * bw * bh) continue;
+    if (std::max(bw, bh) > d.config.max_aspect * std::min(bw, bh)) continue;
+    const Eigen::Vector2d c(d.centroids.at<double>(k, 0), d.centroids.at<double>(k, 1));
+    double score = -area;  // without a prediction: the largest
+    if (q.near) {
+      score = (c - *q.near).norm();
+      if (score > q.search_radius) continue;
+    }
+    ++best.candidates;
+    if (score < best_score) best_score = score, best_label = k, best.radius = r, best.pixel = c;
+  }
+  if (best_label < 0) return best;
+  // Sub-pixel centre: weighted moments over the blob's box grown by 2 pixels, counting only
+  // pixels of this blob or its anti-aliased rim (not another blob's).
+  const int* s = d.stats.ptr<int>(best_label);
+  const int x0 = std::max(0, s[cv::CC_STAT_LEFT] - 2), y0 = std::max(0, s[cv::CC_STAT_TOP] - 2);
+  const int x1 = std::min(w - 1, s[cv::CC_STAT_LEFT] + s[cv::CC_STAT_WIDTH] + 1),
+            y1 = std::min(h - 1, s[cv::CC_STAT_TOP] + s[cv::CC_STAT_HEIGHT] + 1);
+  double m0 = 0, mx = 0, my = 0;
+  for (int y = y0; y <= y1; ++y) {
+    const int* lab = d.labels.ptr<int>(y);
+    for (int x = x0; x <= x1; ++x) {
+      if (lab[x] != 0 && lab[x] != best_label) continue;
+      const double wt = weight(img.pixel(x, y));
+      m0 += wt, mx += wt * x, my += wt * y;
+    }
+  }
+  if (m0 > 0) best.pixel = {mx / m0, my / m0};
+  best.found = true;
+  return best;
+}
+
+}  // namespace
+
+Blob Detector::ball(const viz::Image& img, const BlobQuery& q) {
+  const DetectorConfig& c = impl_->config;
+  return find(
+      *impl_, img, q,
+      [&c](const std::uint8_t* p) {
+        const int lo = std::min({p[0], p[1], p[2]}), hi = std::max({p[0], p[1], p[2]});
+        return hi >= c.ball_min_value && hi - lo <= c.ball_max_saturation * hi;
+      },
+      [&c](const std::uint8_t* p) { return ball_weight(p, c); });
+}
+
+Blob Detector::hole(const viz::Image& img, const BlobQuery& q) {
+  const DetectorConfig& c = impl_->config;
+  return find(
+      *impl_, img, q,
+      [&c](const std::uint8_t* p) {
+        return std::max({p[0], p[1], p[2]}) <= c.hole_max_channel;
+      },
+      [&c](const std::uint8_t* p) { return hole_weight(p, c); });
+}
+
+}  // namespace mg::vision
