@@ -129,7 +129,7 @@ CalibrateReport calibrate_rig(RigRenderer& renderer, mjData* d, const Rig& rig,
   const auto object = board_points(held);
   // Poses are drawn until `views` were found by every camera (the truth only chooses poses a
   // person would: the board in view of all cameras; the corners come from the images).
-  while (static_cast<int>(object_points.size()) < o.views && rep.poses_tried < 20 * o.views) {
+  while (static_cast<int>(object_points.size()) < o.views && rep.poses_tried < 6 * o.views) {
     Board b = random_pose(truth, f, held, rng);
     if (!visible(truth, b, 8.0)) continue;
     ++rep.poses_tried;

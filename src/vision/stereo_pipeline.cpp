@@ -65,8 +65,25 @@ Sighting locate(const StereoModel& model, StereoData& data, const viz::Image* co
     return on_lane(f, p, 0.05) &&
            std::abs(p.z() - (f.height(p.x(), p.y()) + above)) <= model.config.surface_tol;
   };
+  // A ball blob much smaller than a whole ball at that distance is partly hidden (the club,
+  // the arm): its centre is off. If the other camera sees all of it, that camera alone places it.
+  const auto partial = [&](std::size_t i, const Eigen::Vector3d& p) {
+    const double depth = (cams[i].R * p + cams[i].t).z();
+    return ball && depth > 0 &&
+           s.blobs[i].radius < model.config.partial_ratio * cams[i].fy * f.ball.radius / depth;
+  };
   if (s.blobs[0].found && s.blobs[1].found) {
     const auto p = triangulate(cams[0], s.blobs[0].pixel, cams[1], s.blobs[1].pixel);
+    if (p && partial(0, *p) != partial(1, *p)) {
+      const std::size_t whole = partial(0, *p) ? 1 : 0;
+      const auto q = intersect_surface(cams[whole], s.blobs[whole].pixel, f, above);
+      if (q && plausible(*q)) {
+        s.views = 1;
+        s.point = *q;
+        s.partial = true;
+        return s;
+      }
+    }
     if (p) {
       s.reprojection_px =
           reprojection_error(cams[0], s.blobs[0].pixel, cams[1], s.blobs[1].pixel, *p);

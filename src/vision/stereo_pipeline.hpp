@@ -30,6 +30,9 @@ struct StereoConfig {
   double sigma_stereo = 0.002;  ///< [m] measurement std of a triangulated ball
   double sigma_mono = 0.006;    ///< [m] ... of a ball placed on the surface from one camera
   double search_px = 40.0;      ///< [pixels] search around the predicted ball while tracking
+  /// A ball blob whose radius is below this fraction of a whole ball's at its distance is taken
+  /// as partly hidden (its centre is off): the camera that sees the whole ball places it alone.
+  double partial_ratio = 0.85;
 };
 
 struct StereoModel {
@@ -48,7 +51,8 @@ struct Sighting {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  ///< [m] world
   double reprojection_px = 0.0;                     ///< (views == 2) the larger of the two
   std::array<Blob, 2> blobs{};                      ///< the first two cameras' detections
-  bool gated = false;  ///< found in both images but refused (reprojection or off the surface)
+  bool gated = false;    ///< found in both images but refused (reprojection or off the surface)
+  bool partial = false;  ///< one camera's blob was partly hidden; placed by the other
 };
 
 struct StereoData {

@@ -49,7 +49,7 @@ TEST(Calibration, BadValuesNameTheFileAndTheKey) {
   EXPECT_NE(error_of("    width: 640", "    width: 640\n    gain: 2")
                 .find("c.yaml: cameras[0].gain: unknown key"),
             std::string::npos);
-  EXPECT_NE(error_of("    rms_px: 0", "    rms_px: .nan")
+  EXPECT_NE(error_of("    rms_px: 0", "    rms_px: nan")
                 .find("c.yaml: cameras[0].rms_px: expected a finite number"),
             std::string::npos);
   EXPECT_NE(error_of("rotation: [", "rotation: [2, ").find("c.yaml: cameras[0].rotation"),

@@ -66,6 +66,7 @@ TEST(VisionDisplay, CalibrationRecoversTheRig) {
   place_still_scene(s.world(), s.d.get(), f.tee, f.hole.position);
   CalibrateOptions o;
   o.views = 15;
+  o.square = 0.1;  // 10 pixels or more at 320x240
   const CalibrateReport rep = calibrate_rig(s.renderer, s.d.get(), s.rig, o);
   const Calibration& c = rep.calibration;
   ASSERT_EQ(c.cameras.size(), 2u);
@@ -111,31 +112,34 @@ TEST(VisionDisplay, TheArmInFrontOfTheBallInOneCameraLeavesTheOther) {
   const StereoModel model(exact_calibration(s.rig), s.sys.field());
   const auto& f = s.world().field();
   const Eigen::Vector3d c0 = s.renderer.truth(0).centre(), c1 = s.renderer.truth(1).centre();
-  // A ball the arm hides wholly from the left camera (centre and rim), not from the right one.
-  bool found = false;
-  for (double x = -0.25; x <= 0.8 && !found; x += 0.02)
-    for (double y = -0.55; y <= 0.0 && !found; y += 0.02) {
+  // Balls whose centre the arm hides from the left camera (not from the right one): each is
+  // still placed within a centimetre, by the right camera alone where the left sees nothing or
+  // a sliver (a partly hidden ball's centre is off).
+  int cases = 0, one_view = 0;
+  for (double x = -0.25; x <= 0.8 && cases < 8; x += 0.02)
+    for (double y = -0.55; y <= 0.0 && cases < 8; y += 0.02) {
       if (std::hypot(x - f.hole.position[0], y - f.hole.position[1]) < 0.2) continue;
       place_still_scene(s.world(), s.d.get(), {x, y}, f.hole.position);
       const Eigen::Vector3d b(x, y, f.height(x, y) + f.ball.radius);
-      bool hidden = true;
-      for (const Eigen::Vector3d off :
-           {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.02, 0, 0), Eigen::Vector3d(-0.02, 0, 0),
-            Eigen::Vector3d(0, 0.02, 0), Eigen::Vector3d(0, -0.02, 0), Eigen::Vector3d(0, 0, 0.02)})
-        hidden = hidden && blocked(s.world(), s.d.get(), c0, b + off);
-      if (!hidden || blocked(s.world(), s.d.get(), c1, b)) continue;
-      found = true;
+      if (!blocked(s.world(), s.d.get(), c0, b) || blocked(s.world(), s.d.get(), c1, b)) continue;
+      ++cases;
       StereoData data(model);
       const StillMeasurement m = measure_still(s.renderer, model, data, s.d.get());
       std::printf(
-          "ball at (%.2f, %.2f) behind the arm for the left camera: %d view(s), error %.1f mm\n", x,
-          y, m.ball.views, 1e3 * (m.ball.point - m.true_ball).norm());
-      EXPECT_FALSE(m.ball.blobs[0].found);  // the arm's grey is not taken for the ball
+          "ball at (%.2f, %.2f) behind the arm for the left camera: left %s, %d view(s), error "
+          "%.1f mm\n",
+          x, y,
+          !m.ball.blobs[0].found ? "sees nothing"
+          : m.ball.partial       ? "sees a sliver"
+                                 : "sees it",
+          m.ball.views, 1e3 * (m.ball.point - m.true_ball).norm());
       EXPECT_TRUE(m.ball.blobs[1].found);
-      ASSERT_EQ(m.ball.views, 1);
+      ASSERT_GE(m.ball.views, 1);
       EXPECT_LT((m.ball.point - m.true_ball).norm(), 0.01);
+      if (m.ball.views == 1) ++one_view;
     }
-  EXPECT_TRUE(found) << "no ball position hidden by the arm from the left camera only";
+  EXPECT_GE(cases, 3) << "too few ball positions behind the arm for the left camera";
+  EXPECT_GE(one_view, 1);
 }
 
 TEST(VisionDisplay, TheClubBehindTheBallDoesNotMoveIt) {
