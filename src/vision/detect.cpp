@@ -1,6 +1,7 @@
 #include "vision/detect.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
@@ -41,8 +42,8 @@ inline double hole_weight(const std::uint8_t* p, const DetectorConfig& c) {
 }
 
 template <typename Weight, typename Inside>
-Blob find(Detector::Impl& d, const viz::Image& img, const BlobQuery& q, Inside inside,
-          Weight weight) {
+int find(Detector::Impl& d, const viz::Image& img, const BlobQuery& q, Inside inside, Weight weight,
+         Blob* out, int max_out) {
   const int w = img.width, h = img.height;
   if (d.mask.rows != h || d.mask.cols != w) d.mask.create(h, w, CV_8UC1);
   for (int y = 0; y < h; ++y) {
@@ -50,67 +51,104 @@ Blob find(Detector::Impl& d, const viz::Image& img, const BlobQuery& q, Inside i
     for (int x = 0; x < w; ++x) m[x] = inside(img.pixel(x, y)) ? 255 : 0;
   }
   const int n = cv::connectedComponentsWithStats(d.mask, d.labels, d.stats, d.centroids, 8, CV_32S);
-  Blob best;
-  double best_score = 1e18;
-  int best_label = -1;
+  // The best `max_out` blobs by score (insertion into a short sorted array: no allocation).
+  constexpr int kMax = kMaxCandidates;
+  std::array<int, kMax> label{};
+  std::array<double, kMax> score{};
+  int kept = 0, passed = 0;
+  max_out = std::clamp(max_out, 1, kMax);
   for (int k = 1; k < n; ++k) {
     const int* s = d.stats.ptr<int>(k);
+    const int bx = s[cv::CC_STAT_LEFT], by = s[cv::CC_STAT_TOP];
     const int bw = s[cv::CC_STAT_WIDTH], bh = s[cv::CC_STAT_HEIGHT], area = s[cv::CC_STAT_AREA];
     const double r = std::sqrt(area / kPi);
     if (r < q.min_radius || r > q.max_radius) continue;
     if (area < d.config.min_fill * bw * bh) continue;
     if (std::max(bw, bh) > d.config.max_aspect * std::min(bw, bh)) continue;
+    if (bx == 0 || by == 0 || bx + bw == w || by + bh == h) continue;  // cut by the frame
     const Eigen::Vector2d c(d.centroids.at<double>(k, 0), d.centroids.at<double>(k, 1));
-    double score = -area;  // without a prediction: the largest
+    // Without a prediction: rounder and larger first; with one: nearer first.
+    double sc = -area * static_cast<double>(area) / (bw * bh);
     if (q.near) {
-      score = (c - *q.near).norm();
-      if (score > q.search_radius) continue;
+      sc = (c - *q.near).norm();
+      if (sc > q.search_radius) continue;
     }
-    ++best.candidates;
-    if (score < best_score) best_score = score, best_label = k, best.radius = r, best.pixel = c;
-  }
-  if (best_label < 0) return best;
-  // Sub-pixel centre: weighted moments over the blob's box grown by 2 pixels, counting only
-  // pixels of this blob or its anti-aliased rim (not another blob's).
-  const int* s = d.stats.ptr<int>(best_label);
-  const int x0 = std::max(0, s[cv::CC_STAT_LEFT] - 2), y0 = std::max(0, s[cv::CC_STAT_TOP] - 2);
-  const int x1 = std::min(w - 1, s[cv::CC_STAT_LEFT] + s[cv::CC_STAT_WIDTH] + 1),
-            y1 = std::min(h - 1, s[cv::CC_STAT_TOP] + s[cv::CC_STAT_HEIGHT] + 1);
-  double m0 = 0, mx = 0, my = 0;
-  for (int y = y0; y <= y1; ++y) {
-    const int* lab = d.labels.ptr<int>(y);
-    for (int x = x0; x <= x1; ++x) {
-      if (lab[x] != 0 && lab[x] != best_label) continue;
-      const double wt = weight(img.pixel(x, y));
-      m0 += wt, mx += wt * x, my += wt * y;
+    ++passed;
+    int at = std::min(kept, max_out - 1);
+    if (kept == max_out && sc >= score[static_cast<std::size_t>(at)]) continue;
+    while (at > 0 && score[static_cast<std::size_t>(at - 1)] > sc) {
+      label[static_cast<std::size_t>(at)] = label[static_cast<std::size_t>(at - 1)];
+      score[static_cast<std::size_t>(at)] = score[static_cast<std::size_t>(at - 1)];
+      --at;
     }
+    label[static_cast<std::size_t>(at)] = k;
+    score[static_cast<std::size_t>(at)] = sc;
+    kept = std::min(kept + 1, max_out);
   }
-  if (m0 > 0) best.pixel = {mx / m0, my / m0};
-  best.found = true;
-  return best;
+  for (int j = 0; j < kept; ++j) {
+    const int lab_j = label[static_cast<std::size_t>(j)];
+    const int* s = d.stats.ptr<int>(lab_j);
+    Blob& b = out[j];
+    b = Blob{};
+    b.found = true;
+    b.candidates = passed;
+    b.radius = std::sqrt(s[cv::CC_STAT_AREA] / kPi);
+    b.pixel = {d.centroids.at<double>(lab_j, 0), d.centroids.at<double>(lab_j, 1)};
+    // Sub-pixel centre: weighted moments over the blob's box grown by 2 pixels, counting only
+    // pixels of this blob or its anti-aliased rim (not another blob's).
+    const int x0 = std::max(0, s[cv::CC_STAT_LEFT] - 2), y0 = std::max(0, s[cv::CC_STAT_TOP] - 2);
+    const int x1 = std::min(w - 1, s[cv::CC_STAT_LEFT] + s[cv::CC_STAT_WIDTH] + 1),
+              y1 = std::min(h - 1, s[cv::CC_STAT_TOP] + s[cv::CC_STAT_HEIGHT] + 1);
+    double m0 = 0, mx = 0, my = 0;
+    for (int y = y0; y <= y1; ++y) {
+      const int* lab = d.labels.ptr<int>(y);
+      for (int x = x0; x <= x1; ++x) {
+        if (lab[x] != 0 && lab[x] != lab_j) continue;
+        const double wt = weight(img.pixel(x, y));
+        m0 += wt, mx += wt * x, my += wt * y;
+      }
+    }
+    if (m0 > 0) b.pixel = {mx / m0, my / m0};
+  }
+  return kept;
 }
 
 }  // namespace
 
-Blob Detector::ball(const viz::Image& img, const BlobQuery& q) {
+namespace {
+bool ball_pixel(const std::uint8_t* p, const DetectorConfig& c) {
+  const int lo = std::min({p[0], p[1], p[2]}), hi = std::max({p[0], p[1], p[2]});
+  return hi >= c.ball_min_value && hi - lo <= c.ball_max_saturation * hi;
+}
+bool hole_pixel(const std::uint8_t* p, const DetectorConfig& c) {
+  return std::max({p[0], p[1], p[2]}) <= c.hole_max_channel;
+}
+}  // namespace
+
+int Detector::balls(const viz::Image& img, const BlobQuery& q, Blob* out, int max) {
   const DetectorConfig& c = impl_->config;
   return find(
-      *impl_, img, q,
-      [&c](const std::uint8_t* p) {
-        const int lo = std::min({p[0], p[1], p[2]}), hi = std::max({p[0], p[1], p[2]});
-        return hi >= c.ball_min_value && hi - lo <= c.ball_max_saturation * hi;
-      },
-      [&c](const std::uint8_t* p) { return ball_weight(p, c); });
+      *impl_, img, q, [&c](const std::uint8_t* p) { return ball_pixel(p, c); },
+      [&c](const std::uint8_t* p) { return ball_weight(p, c); }, out, max);
+}
+
+int Detector::holes(const viz::Image& img, const BlobQuery& q, Blob* out, int max) {
+  const DetectorConfig& c = impl_->config;
+  return find(
+      *impl_, img, q, [&c](const std::uint8_t* p) { return hole_pixel(p, c); },
+      [&c](const std::uint8_t* p) { return hole_weight(p, c); }, out, max);
+}
+
+Blob Detector::ball(const viz::Image& img, const BlobQuery& q) {
+  Blob b;
+  balls(img, q, &b, 1);
+  return b;
 }
 
 Blob Detector::hole(const viz::Image& img, const BlobQuery& q) {
-  const DetectorConfig& c = impl_->config;
-  return find(
-      *impl_, img, q,
-      [&c](const std::uint8_t* p) {
-        return std::max({p[0], p[1], p[2]}) <= c.hole_max_channel;
-      },
-      [&c](const std::uint8_t* p) { return hole_weight(p, c); });
+  Blob b;
+  holes(img, q, &b, 1);
+  return b;
 }
 
 }  // namespace mg::vision

@@ -22,6 +22,9 @@ struct DetectorConfig {
   double max_aspect = 2.5;    ///< bounding box's long side / short side, at most
 };
 
+/// Candidates kept per image.
+inline constexpr int kMaxCandidates = 6;
+
 /// One blob found in an image.
 struct Blob {
   bool found = false;
@@ -47,6 +50,12 @@ class Detector {
   Detector(Detector&&) noexcept;
   Detector& operator=(Detector&&) noexcept;
   const DetectorConfig& config() const;
+  /// The blobs that pass the size and shape tests (none cut by the image's frame), best first
+  /// (without `query.near`: rounder and larger; with it: nearer), at most `max` (<=
+  /// kMaxCandidates) into `out`; returns how many.
+  int balls(const viz::Image& image, const BlobQuery& query, Blob* out, int max);
+  int holes(const viz::Image& image, const BlobQuery& query, Blob* out, int max);
+  /// The best blob only.
   Blob ball(const viz::Image& image, const BlobQuery& query);
   Blob hole(const viz::Image& image, const BlobQuery& query);
 

@@ -106,13 +106,25 @@ const viz::Image& RigRenderer::render(int i, const mjData* d, const Board* board
   const field::Field& f = world.field();
   const auto hole = world.hole_position(r.data());
   {
-    const double rad = 0.5 * f.hole.diameter, z = f.height(hole[0], hole[1]);
-    // Sizes as mjModel.geom_size: a cylinder's are (radius, half-height). Top 0.5 mm above.
-    const mjtNum size[3] = {rad, 0.001, 0.0}, at[3] = {hole[0], hole[1], z - 0.0005};
+    // Level with the surface there (its normal by central differences), top 1.5 mm above it
+    // (the lane as drawn is the heightfield's triangles, not the exact surface).
+    const double rad = 0.5 * f.hole.diameter, z = f.height(hole[0], hole[1]), e = 0.01;
+    const Eigen::Vector3d n =
+        Eigen::Vector3d(
+            -(f.height(hole[0] + e, hole[1]) - f.height(hole[0] - e, hole[1])) / (2 * e),
+            -(f.height(hole[0], hole[1] + e) - f.height(hole[0], hole[1] - e)) / (2 * e), 1.0)
+            .normalized();
+    const Eigen::Vector3d ax = (Eigen::Vector3d::UnitX() - n * n.x()).normalized(),
+                          ay = n.cross(ax);
+    mjtNum mat[9];
+    for (int k = 0; k < 3; ++k) mat[3 * k] = ax[k], mat[3 * k + 1] = ay[k], mat[3 * k + 2] = n[k];
+    // Sizes as mjModel.geom_size: a cylinder's are (radius, half-height).
+    const mjtNum size[3] = {rad, 0.001, 0.0};
+    const mjtNum at[3] = {hole[0] + 0.0005 * n.x(), hole[1] + 0.0005 * n.y(), z + 0.0005 * n.z()};
     const float dark[4] = {0.05f, 0.05f, 0.05f, 1.0f};
     if (scn.ngeom < scn.maxgeom) {
       mjvGeom* g = scn.geoms + scn.ngeom++;
-      mjv_initGeom(g, mjGEOM_CYLINDER, size, at, nullptr, dark);
+      mjv_initGeom(g, mjGEOM_CYLINDER, size, at, mat, dark);
       g->category = mjCAT_DECOR;
     }
   }

@@ -49,6 +49,8 @@ Sighting locate(const StereoModel& model, StereoData& data, const viz::Image* co
   const auto& cams = model.calibration.cameras;
   const field::Field& f = model.field;
   const double above = ball ? f.ball.radius : 0.0;
+  std::array<std::array<Blob, kMaxCandidates>, 2> cand{};
+  std::array<int, 2> n{0, 0};
   for (std::size_t i = 0; i < 2; ++i) {
     BlobQuery q;
     const auto& range = ball ? model.ball_radius_px[i] : model.hole_radius_px[i];
@@ -58,8 +60,9 @@ Sighting locate(const StereoModel& model, StereoData& data, const viz::Image* co
       q.near = *predicted[i];
       q.search_radius = model.config.search_px;
     }
-    s.blobs[i] =
-        ball ? data.detectors[i].ball(*images[i], q) : data.detectors[i].hole(*images[i], q);
+    n[i] = ball ? data.detectors[i].balls(*images[i], q, cand[i].data(), kMaxCandidates)
+                : data.detectors[i].holes(*images[i], q, cand[i].data(), kMaxCandidates);
+    if (n[i] > 0) s.blobs[i] = cand[i][0];
   }
   const auto plausible = [&](const Eigen::Vector3d& p) {
     return on_lane(f, p, 0.05) &&
@@ -67,15 +70,31 @@ Sighting locate(const StereoModel& model, StereoData& data, const viz::Image* co
   };
   // A ball blob much smaller than a whole ball at that distance is partly hidden (the club,
   // the arm): its centre is off. If the other camera sees all of it, that camera alone places it.
-  const auto partial = [&](std::size_t i, const Eigen::Vector3d& p) {
+  const auto partial = [&](std::size_t i, const Blob& b, const Eigen::Vector3d& p) {
     const double depth = (cams[i].R * p + cams[i].t).z();
     return ball && depth > 0 &&
-           s.blobs[i].radius < model.config.partial_ratio * cams[i].fy * f.ball.radius / depth;
+           b.radius < model.config.partial_ratio * cams[i].fy * f.ball.radius / depth;
   };
-  if (s.blobs[0].found && s.blobs[1].found) {
-    const auto p = triangulate(cams[0], s.blobs[0].pixel, cams[1], s.blobs[1].pixel);
-    if (p && partial(0, *p) != partial(1, *p)) {
-      const std::size_t whole = partial(0, *p) ? 1 : 0;
+  // Epipolar matching: of all candidate pairs, the one with the smallest reprojection error
+  // that lies at the surface (the arm's grey, a highlight, the other's wrong blob are refused).
+  int best_a = -1, best_b = -1;
+  double best_err = model.config.gate_px;
+  Eigen::Vector3d best_p = Eigen::Vector3d::Zero();
+  for (int ia = 0; ia < n[0]; ++ia)
+    for (int ib = 0; ib < n[1]; ++ib) {
+      const Blob& a = cand[0][static_cast<std::size_t>(ia)];
+      const Blob& b = cand[1][static_cast<std::size_t>(ib)];
+      const auto p = triangulate(cams[0], a.pixel, cams[1], b.pixel);
+      if (!p || !plausible(*p)) continue;
+      const double err = reprojection_error(cams[0], a.pixel, cams[1], b.pixel, *p);
+      if (err <= best_err) best_err = err, best_a = ia, best_b = ib, best_p = *p;
+    }
+  if (best_a >= 0) {
+    s.blobs = {cand[0][static_cast<std::size_t>(best_a)],
+               cand[1][static_cast<std::size_t>(best_b)]};
+    const bool p0 = partial(0, s.blobs[0], best_p), p1 = partial(1, s.blobs[1], best_p);
+    if (p0 != p1) {
+      const std::size_t whole = p0 ? 1 : 0;
       const auto q = intersect_surface(cams[whole], s.blobs[whole].pixel, f, above);
       if (q && plausible(*q)) {
         s.views = 1;
@@ -84,24 +103,19 @@ Sighting locate(const StereoModel& model, StereoData& data, const viz::Image* co
         return s;
       }
     }
-    if (p) {
-      s.reprojection_px =
-          reprojection_error(cams[0], s.blobs[0].pixel, cams[1], s.blobs[1].pixel, *p);
-      if (s.reprojection_px <= model.config.gate_px && plausible(*p)) {
-        s.views = 2;
-        s.point = *p;
-        return s;
-      }
-    }
-    s.gated = true;
-    // One of the two is wrong: without a prediction to tell which, neither is used.
-    if (!(predicted && (predicted[0] || predicted[1]))) return s;
+    s.views = 2;
+    s.point = best_p;
+    s.reprojection_px = best_err;
+    return s;
   }
-  // One camera: the ray meets the surface (+ the ball's radius).
+  s.gated = n[0] > 0 && n[1] > 0;
+  // One camera: the ray meets the surface (+ the ball's radius). While tracking, the blob nearest
+  // the prediction; otherwise only an unambiguous one (one blob in one camera, none in the other).
   for (std::size_t i = 0; i < 2; ++i) {
-    if (!s.blobs[i].found) continue;
-    if (s.gated && !(predicted && predicted[i])) continue;
-    const auto p = intersect_surface(cams[i], s.blobs[i].pixel, f, above);
+    if (n[i] == 0) continue;
+    const bool tracked = predicted && predicted[i];
+    if (!tracked && (n[i] != 1 || n[1 - i] != 0)) continue;
+    const auto p = intersect_surface(cams[i], cand[i][0].pixel, f, above);
     if (p && on_lane(f, *p, 0.05)) {
       s.views = 1;
       s.point = *p;
