@@ -46,11 +46,23 @@ int find(Detector::Impl& d, const viz::Image& img, const BlobQuery& q, Inside in
          Blob* out, int max_out) {
   const int w = img.width, h = img.height;
   if (d.mask.rows != h || d.mask.cols != w) d.mask.create(h, w, CV_8UC1);
-  for (int y = 0; y < h; ++y) {
-    std::uint8_t* m = d.mask.ptr<std::uint8_t>(y);
-    for (int x = 0; x < w; ++x) m[x] = inside(img.pixel(x, y)) ? 255 : 0;
+  // With a prediction only a window around it is searched (a tracked ball: a few percent of the
+  // image); coordinates below are the window's, `ox`, `oy` its corner in the image.
+  cv::Rect roi(0, 0, w, h);
+  if (q.near) {
+    const int r = static_cast<int>(std::ceil(std::min(q.search_radius, 1e4) + q.max_radius)) + 3;
+    roi = cv::Rect(static_cast<int>(std::lround(q.near->x())) - r,
+                   static_cast<int>(std::lround(q.near->y())) - r, 2 * r + 1, 2 * r + 1) &
+          cv::Rect(0, 0, w, h);
+    if (roi.empty()) return 0;
   }
-  const int n = cv::connectedComponentsWithStats(d.mask, d.labels, d.stats, d.centroids, 8, CV_32S);
+  const int ox = roi.x, oy = roi.y;
+  cv::Mat mask = d.mask(roi);
+  for (int y = 0; y < roi.height; ++y) {
+    std::uint8_t* m = mask.ptr<std::uint8_t>(y);
+    for (int x = 0; x < roi.width; ++x) m[x] = inside(img.pixel(x + ox, y + oy)) ? 255 : 0;
+  }
+  const int n = cv::connectedComponentsWithStats(mask, d.labels, d.stats, d.centroids, 8, CV_32S);
   // The best `max_out` blobs by score (insertion into a short sorted array: no allocation).
   constexpr int kMax = kMaxCandidates;
   std::array<int, kMax> label{};
@@ -59,14 +71,14 @@ int find(Detector::Impl& d, const viz::Image& img, const BlobQuery& q, Inside in
   max_out = std::clamp(max_out, 1, kMax);
   for (int k = 1; k < n; ++k) {
     const int* s = d.stats.ptr<int>(k);
-    const int bx = s[cv::CC_STAT_LEFT], by = s[cv::CC_STAT_TOP];
+    const int bx = s[cv::CC_STAT_LEFT] + ox, by = s[cv::CC_STAT_TOP] + oy;
     const int bw = s[cv::CC_STAT_WIDTH], bh = s[cv::CC_STAT_HEIGHT], area = s[cv::CC_STAT_AREA];
     const double r = std::sqrt(area / kPi);
     if (r < q.min_radius || r > q.max_radius) continue;
     if (area < d.config.min_fill * bw * bh) continue;
     if (std::max(bw, bh) > d.config.max_aspect * std::min(bw, bh)) continue;
     if (bx == 0 || by == 0 || bx + bw == w || by + bh == h) continue;  // cut by the frame
-    const Eigen::Vector2d c(d.centroids.at<double>(k, 0), d.centroids.at<double>(k, 1));
+    const Eigen::Vector2d c(d.centroids.at<double>(k, 0) + ox, d.centroids.at<double>(k, 1) + oy);
     // Without a prediction: rounder and larger first; with one: nearer first.
     double sc = -area * static_cast<double>(area) / (bw * bh);
     if (q.near) {
@@ -93,19 +105,19 @@ int find(Detector::Impl& d, const viz::Image& img, const BlobQuery& q, Inside in
     b.found = true;
     b.candidates = passed;
     b.radius = std::sqrt(s[cv::CC_STAT_AREA] / kPi);
-    b.pixel = {d.centroids.at<double>(lab_j, 0), d.centroids.at<double>(lab_j, 1)};
-    // Sub-pixel centre: weighted moments over the blob's box grown by 2 pixels, counting only
-    // pixels of this blob or its anti-aliased rim (not another blob's).
+    b.pixel = {d.centroids.at<double>(lab_j, 0) + ox, d.centroids.at<double>(lab_j, 1) + oy};
+    // Sub-pixel centre: weighted moments over the blob's box grown by 2 pixels (in the window),
+    // counting only pixels of this blob or its anti-aliased rim (not another blob's).
     const int x0 = std::max(0, s[cv::CC_STAT_LEFT] - 2), y0 = std::max(0, s[cv::CC_STAT_TOP] - 2);
-    const int x1 = std::min(w - 1, s[cv::CC_STAT_LEFT] + s[cv::CC_STAT_WIDTH] + 1),
-              y1 = std::min(h - 1, s[cv::CC_STAT_TOP] + s[cv::CC_STAT_HEIGHT] + 1);
+    const int x1 = std::min(roi.width - 1, s[cv::CC_STAT_LEFT] + s[cv::CC_STAT_WIDTH] + 1),
+              y1 = std::min(roi.height - 1, s[cv::CC_STAT_TOP] + s[cv::CC_STAT_HEIGHT] + 1);
     double m0 = 0, mx = 0, my = 0;
     for (int y = y0; y <= y1; ++y) {
       const int* lab = d.labels.ptr<int>(y);
       for (int x = x0; x <= x1; ++x) {
         if (lab[x] != 0 && lab[x] != lab_j) continue;
-        const double wt = weight(img.pixel(x, y));
-        m0 += wt, mx += wt * x, my += wt * y;
+        const double wt = weight(img.pixel(x + ox, y + oy));
+        m0 += wt, mx += wt * (x + ox), my += wt * (y + oy);
       }
     }
     if (m0 > 0) b.pixel = {mx / m0, my / m0};

@@ -148,7 +148,13 @@ void stereo_frame(const StereoModel& model, StereoData& data, const viz::Image* 
                  data.last_ball.views == 2 ? cfg.sigma_stereo : cfg.sigma_mono);
   else
     track_predict(k, cfg.tracker, stamp);
-  data.last_hole = locate(model, data, images, false);
+  // The hole does not move: once seen in 10 frames, it is looked for near where it was.
+  std::optional<Eigen::Vector2d> hole_at[2];
+  if (data.hole_count >= 10) {
+    const Eigen::Vector3d mean = data.hole_sum / data.hole_count;
+    for (std::size_t i = 0; i < 2; ++i) hole_at[i] = project(model.calibration.cameras[i], mean);
+  }
+  data.last_hole = locate(model, data, images, false, hole_at);
   if (data.last_hole.views == 2) {
     const Eigen::Vector3d mean = data.hole_count > 0
                                      ? Eigen::Vector3d(data.hole_sum / data.hole_count)
