@@ -12,6 +12,8 @@
 #include "../viz/viz_test_util.hpp"
 #include "control/full_system.hpp"
 #include "core/io.hpp"
+#include "perception/udp.hpp"
+#include "perception/vision_message.hpp"
 #include "robot/arm_mujoco.hpp"
 #include "system/system.hpp"
 #include "vision/calibrate.hpp"
@@ -253,6 +255,51 @@ cameras:
   EXPECT_EQ(c["sunk"], t["sunk"]);
   EXPECT_NEAR(c["rest_position"][0].get<double>(), t["rest_position"][0].get<double>(), 0.05);
   EXPECT_NEAR(c["rest_position"][1].get<double>(), t["rest_position"][1].get<double>(), 0.05);
+}
+
+// vision-cam: the rendered cameras' ball and hole arrive as minigolf-vision/1 datagrams; the
+// frames it wrote, replayed without rendering, give the same positions.
+TEST(VisionCliDisplay, VisionCamPublishesWhatItSeesAndReplaysItsFrames) {
+  MG_NEED_DISPLAY();
+  const auto dir = viz::testing::temp_dir("vision_cam");
+  std::string small = read_text_file(data_dir() / "rigs" / "stereo.yaml");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"width: 640", "width: 320"},
+                                 {"height: 480", "height: 240"}})
+    for (auto at = small.find(from); at != std::string::npos; at = small.find(from))
+      small.replace(at, from.size(), to);
+  std::ofstream(dir / "small.yaml") << small;
+  const std::string rig = (dir / "small.yaml").string();
+  const auto receive = [](perception::UdpReceiver& rx) {
+    std::vector<perception::VisionMessage> got;
+    std::array<char, 600> buf{};
+    while (auto n = rx.receive(buf)) {
+      const auto p = perception::parse_vision_message(std::string_view(buf.data(), *n), {});
+      EXPECT_EQ(p.error, perception::VisionError::kNone);
+      got.push_back(p.message);
+    }
+    return got;
+  };
+  perception::UdpReceiver rx("127.0.0.1", 0);
+  const std::string to = " --fast --duration 0.2 --to 127.0.0.1:" + std::to_string(rx.port());
+  const auto live = cli::testing::run_minigolf("vision-cam --rig " + rig + to + " --frames " +
+                                               (dir / "frames").string());
+  ASSERT_EQ(live.exit_code, 0) << live.err;
+  const auto a = receive(rx);
+  ASSERT_EQ(a.size(), 12u) << live.out;  // 0.2 s at 60 Hz, every frame fresh
+  for (const auto& m : a) {
+    EXPECT_NEAR(m.ball[0], 0.0, 0.004);  // the ball on the tee
+    EXPECT_NEAR(m.ball[1], 0.0, 0.004);
+    EXPECT_NEAR(m.hole[0], 2.0, 0.006);
+  }
+  const auto replay = cli::testing::run_minigolf("vision-cam --rig " + rig + to + " --replay " +
+                                                 (dir / "frames").string());
+  ASSERT_EQ(replay.exit_code, 0) << replay.err;
+  const auto b = receive(rx);
+  ASSERT_EQ(b.size(), a.size()) << replay.out;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(b[k].ball, a[k].ball);
+    EXPECT_EQ(b[k].hole, a[k].hole);
+  }
 }
 
 }  // namespace
