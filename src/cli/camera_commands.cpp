@@ -206,7 +206,7 @@ void add_camera_commands(CLI::App& app) {
     vision::RigRenderer renderer(world, rig);
     const vision::StereoModel model(calib, sys.field());
     auto d = world.make_data();
-    Stats ball_err, hole_err, reproj, cpu, render;
+    Stats ball_err, ball_stereo_err, hole_err, reproj, cpu, render;
     int seen = 0, stereo = 0;
     nlohmann::json single;
     for (std::size_t k = 0; k < balls.size(); ++k) {
@@ -214,7 +214,9 @@ void add_camera_commands(CLI::App& app) {
       vision::StereoData data(model);
       const vision::StillMeasurement s = vision::measure_still(renderer, model, data, d.get());
       if (s.ball.views > 0) ++seen, ball_err.v.push_back((s.ball.point - s.true_ball).norm());
-      if (s.ball.views == 2) ++stereo, reproj.v.push_back(s.ball.reprojection_px);
+      if (s.ball.views == 2)
+        ++stereo, reproj.v.push_back(s.ball.reprojection_px),
+            ball_stereo_err.v.push_back((s.ball.point - s.true_ball).norm());
       if (s.hole.views > 0) hole_err.v.push_back((s.hole.point - s.true_hole).norm());
       cpu.v.push_back(s.cpu_seconds);
       render.v.push_back(s.render_seconds / 2);
@@ -261,6 +263,7 @@ void add_camera_commands(CLI::App& app) {
       out["ball_seen"] = seen;
       out["ball_stereo"] = stereo;
       out["ball_error_mm"] = ball_err.json(1000);
+      out["ball_error_stereo_mm"] = ball_stereo_err.json(1000);  // triangulated only
       out["hole_error_mm"] = hole_err.json(1000);
       out["reprojection_px"] = reproj.json(1);
       out["cpu_ms_per_pair"] = cpu.json(1000);
