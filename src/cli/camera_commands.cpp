@@ -2,7 +2,8 @@
 //
 //   minigolf vision calibrate [--rig R] [--field F] [--views N] [--seed S] [--frames DIR] -o FILE
 //   minigolf vision measure [--field F] [--ball X,Y] [--hole X,Y] [--rig R] [--calibration C]
-//                           [--plant P] [--grid NX,NY] [--frames DIR] [--json]
+//                           [--plant P] [--grid NX,NY] [--bump CAMERA:DX,DY,DZ,YAW,PITCH]
+//                           [--frames DIR] [--json]
 //   minigolf vision-cam [--rig R] [--calibration C] [--to HOST:PORT] [--field F] [--hole X,Y]
 //                       [--angle RAD --speed M/S] [--duration S] [--frames DIR | --replay DIR]
 //                       [--fast]
@@ -143,7 +144,7 @@ void add_camera_commands(CLI::App& app) {
     SystemArgs sys;
     std::string rig = vision::kDefaultRig;
     std::string calibration;
-    std::string ball, hole, grid, frames;
+    std::string ball, hole, grid, frames, bump;
     bool json = false;
   };
   auto m = std::make_shared<MeasureOptions>();
@@ -161,14 +162,26 @@ void add_camera_commands(CLI::App& app) {
                   "NX,NY: the ball over a grid of the lane (0.1 m inside its bounds); prints the "
                   "error statistics");
   mea->add_option("--frames", m->frames, "Write each camera's frame and its detections (PNG)");
+  mea->add_option("--bump", m->bump,
+                  "CAMERA:DX,DY,DZ,YAW,PITCH: that camera moved [m] and turned [deg] after "
+                  "calibration (the truth renders it so; the belief is unchanged)");
   mea->add_flag("--json", m->json, "Print one JSON object");
   mea->callback([m] {
-    const vision::Rig rig = vision::load_rig(m->rig);
+    const vision::Rig believed = vision::load_rig(m->rig);
+    vision::Rig rig = believed;
+    if (!m->bump.empty()) {
+      const auto colon = m->bump.find(':');
+      if (colon == std::string::npos)
+        throw InputError(
+            fmt::format("--bump: expected CAMERA:DX,DY,DZ,YAW,PITCH, got '{}'", one_line(m->bump)));
+      const auto b = parse_vector<5>("--bump", m->bump.substr(colon + 1));
+      rig = vision::bump_camera(rig, m->bump.substr(0, colon), {b[0], b[1], b[2]}, b[3], b[4]);
+    }
     const system::System sys(system::load_config("", m->sys.field), load_plant_arg(m->sys.plant));
     const sim::World& world = sys.arm_world();
     const field::Field& f = world.field();
     vision::check_rig_sees_field(rig, f);
-    vision::Calibration calib = m->calibration.empty() ? vision::exact_calibration(rig)
+    vision::Calibration calib = m->calibration.empty() ? vision::exact_calibration(believed)
                                                        : vision::load_calibration(m->calibration);
     vision::check_calibration_matches(calib, rig);
     std::array<double, 2> hole =

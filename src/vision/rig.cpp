@@ -128,6 +128,31 @@ Rig load_rig(const std::string& name_or_path) {
   return parse_rig(read_text_file(path), path.string());
 }
 
+Rig bump_camera(Rig rig, const std::string& name, const std::array<double, 3>& offset,
+                double yaw_deg, double pitch_deg) {
+  const Eigen::Vector3d d(offset.data());
+  if (!(d.norm() <= 0.1) || !(std::abs(yaw_deg) <= 10.0) || !(std::abs(pitch_deg) <= 10.0))
+    throw InputError(fmt::format(
+        "bump: expected a move of at most 0.1 m and turns of at most 10 degrees, got {:.3g} m, "
+        "{:.3g} and {:.3g} degrees",
+        d.norm(), yaw_deg, pitch_deg));
+  for (auto& c : rig.cameras) {
+    if (c.name != name) continue;
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    const Eigen::Vector3d pos(c.position.data()), at(c.look_at.data());
+    Eigen::Vector3d dir = at - pos;
+    const Eigen::Vector3d right = dir.cross(Eigen::Vector3d(c.up.data())).normalized();
+    dir = Eigen::AngleAxisd(yaw_deg * kDeg, Eigen::Vector3d::UnitZ()) *
+          (Eigen::AngleAxisd(pitch_deg * kDeg, right) * dir);
+    for (int k = 0; k < 3; ++k) {
+      c.position[static_cast<std::size_t>(k)] = pos[k] + d[k];
+      c.look_at[static_cast<std::size_t>(k)] = pos[k] + d[k] + dir[k];
+    }
+    return rig;
+  }
+  throw InputError(fmt::format("bump: no camera '{}' in rig '{}'", name, rig.name));
+}
+
 void check_rig_sees_field(const Rig& rig, const field::Field& field) {
   const auto& b = field.bounds;
   constexpr int kGrid = 25;

@@ -59,6 +59,13 @@ Rig load_rig(const std::string& name_or_path);
 /// The shipped default rig.
 inline constexpr const char* kDefaultRig = "stereo";
 
+/// The rig with camera `name` bumped after calibration: moved by `offset` [m, world] and turned
+/// by `yaw_deg` about the vertical and `pitch_deg` about its horizontal right axis (its look_at
+/// turned about its position). The calibration (the belief) stays the unbumped rig's. Throws
+/// InputError for an unknown camera or a turn beyond 10 degrees / a move beyond 0.1 m.
+Rig bump_camera(Rig rig, const std::string& name, const std::array<double, 3>& offset,
+                double yaw_deg, double pitch_deg);
+
 /// Throws InputError "SOURCE: cameras[i]: camera 'NAME' sees no part of the lane of field F"
 /// unless every camera sees some of `field`'s lane surface (a grid of lane points projected
 /// through the camera's own lens).

@@ -9,6 +9,7 @@
 #include "../cli/run_command.hpp"
 #include "core/error.hpp"
 #include "field/field.hpp"
+#include "vision/camera_model.hpp"
 #include "vision/rig.hpp"
 
 namespace mg::vision {
@@ -100,6 +101,23 @@ TEST(Rig, ACameraThatSeesNoLaneIsRefused) {
         std::string::npos)
         << e.what();
   }
+}
+
+TEST(Rig, ABumpedCameraMovesAndTurns) {
+  const Rig rig = parse_rig(kGood, "rig.yaml");
+  const Rig bumped = bump_camera(rig, "a", {0.002, 0.0, 0.0}, 0.5, 0.0);
+  EXPECT_NEAR(bumped.cameras[0].position[0], rig.cameras[0].position[0] + 0.002, 1e-12);
+  EXPECT_EQ(bumped.cameras[1].position, rig.cameras[1].position);  // the other camera stays
+  // Half a degree about the vertical moves the old look-at point by about fy tan(0.5 deg)
+  // (times the vertical's share of the image's up): several pixels at 48 pixels high.
+  const Eigen::Vector3d at(rig.cameras[0].look_at.data());
+  const auto before = project(camera_from_spec(rig.cameras[0]), at);
+  const auto after = project(camera_from_spec(bumped.cameras[0]), at);
+  ASSERT_TRUE(before && after);
+  EXPECT_GT((*after - *before).norm(), 0.1);
+  EXPECT_LT((*after - *before).norm(), 1.0);
+  EXPECT_THROW(bump_camera(rig, "c", {0, 0, 0}, 0.1, 0.0), InputError);
+  EXPECT_THROW(bump_camera(rig, "a", {0, 0, 0}, 45.0, 0.0), InputError);
 }
 
 TEST(RigCli, ABadRigFileIsOneLineAndExit2) {
