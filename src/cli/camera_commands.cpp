@@ -1,4 +1,5 @@
-// vision calibrate | vision measure: the stereo cameras (docs/perception.md "Cameras").
+// vision calibrate | vision measure | vision-cam: the stereo cameras (docs/perception.md
+// "Cameras").
 //
 //   minigolf vision calibrate [--rig R] [--field F] [--views N] [--seed S] [--frames DIR] -o FILE
 //   minigolf vision measure [--field F] [--ball X,Y] [--hole X,Y] [--rig R] [--calibration C]
