@@ -14,7 +14,7 @@ namespace {
 
 CameraSpec spec(std::array<double, 3> pos, Distortion d = {}) {
   CameraSpec s;
-  s.name = "c";
+  s.name = std::string(1, 'c');  // (a literal here trips GCC 12's -Wrestrict)
   s.position = pos;
   s.look_at = {1.2, 0.0, 0.0};
   s.fovy_deg = 50;
@@ -54,8 +54,8 @@ TEST(CameraModel, TriangulationOfExactPixelsReturnsThePoint) {
   const Distortion d{-0.05, 0.01, 0, 0, 0};
   const CameraModel a = camera_from_spec(spec({0.2, 1.0, 2.2}, d)),
                     b = camera_from_spec(spec({2.2, 1.0, 2.2}, d));
-  for (const Eigen::Vector3d p : {Eigen::Vector3d(0, 0, 0.021), Eigen::Vector3d(2.0, 0.3, 0.05),
-                                  Eigen::Vector3d(1.0, -0.5, 0.0)}) {
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0.021), Eigen::Vector3d(2.0, 0.3, 0.05),
+                                   Eigen::Vector3d(1.0, -0.5, 0.0)}) {
     const auto pa = project(a, p), pb = project(b, p);
     ASSERT_TRUE(pa && pb);
     const auto q = triangulate(a, *pa, b, *pb);

@@ -190,7 +190,9 @@ TEST(VisionDisplay, ALostBallGoesStaleAndABallInTheCupIsReported) {
   for (; t < 0.5; t += 0.01) {
     p = eyes.perceive(t);
     if (!p.fresh && stale_at < 0) stale_at = t;
-    if (stale_at >= 0) EXPECT_FALSE(p.fresh) << t;
+    if (stale_at >= 0) {
+      EXPECT_FALSE(p.fresh) << t;
+    }
   }
   ASSERT_GE(stale_at, 0.1);
   EXPECT_LE(stale_at, 0.1 + model.config.max_age + latency + 0.04);
