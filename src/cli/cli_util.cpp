@@ -163,6 +163,7 @@ std::array<double, N> parse_vector(const std::string& what, const std::string& t
 
 template std::array<double, 2> parse_vector<2>(const std::string&, const std::string&);
 template std::array<double, 3> parse_vector<3>(const std::string&, const std::string&);
+template std::array<double, 5> parse_vector<5>(const std::string&, const std::string&);
 
 plant::Plant load_plant_arg(const std::string& path) {
   if (path.empty()) return {};

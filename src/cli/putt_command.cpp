@@ -20,6 +20,8 @@
 #include "sim/putt.hpp"
 #include "system/putt.hpp"
 #include "system/system.hpp"
+#include "vision/calibration.hpp"
+#include "vision/camera_perception.hpp"
 #include "viz/figure_data.hpp"
 
 namespace mg::cli {
@@ -64,6 +66,9 @@ void add_putt_command(CLI::App& app) {
     std::string hitting_model;
     std::string config;
     std::string plant;
+    std::string perception = "truth";
+    std::string rig = vision::kDefaultRig;
+    std::string calibration;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("putt", "Simulate one putt and report the outcome");
@@ -95,6 +100,16 @@ void add_putt_command(CLI::App& app) {
   cmd->add_option("--config", o->config,
                   "Module config YAML (gains, envelope, ...; see notes/control.md)");
   cmd->add_option("--plant", o->plant, kPlantHelp);
+  cmd->add_option("--perception", o->perception,
+                  "What the module sees: truth (the simulator's) or camera (the rig's cameras "
+                  "render the simulation; needs a display or xvfb-run)")
+      ->check(CLI::IsMember({"truth", "camera"}))
+      ->capture_default_str();
+  cmd->add_option("--rig", o->rig, "With --perception camera: rig file or shipped rig name")
+      ->capture_default_str();
+  cmd->add_option("--calibration", o->calibration,
+                  "With --perception camera: calibration file (vision calibrate; default: the "
+                  "rig's exact cameras)");
   cmd->callback([o] {
     system::PuttSpec spec;
     spec.angle = o->angle;
@@ -114,11 +129,36 @@ void add_putt_command(CLI::App& app) {
                              load_plant_arg(o->plant));
     if (spec.ball) system::check_ball_position(sys.field(), *spec.ball, "--ball");
     system::SystemData data(sys);
+    std::unique_ptr<vision::CameraPerceptionSource> cameras;
+    if (o->perception == "camera") {
+      if (o->ball_only) throw InputError("--perception camera: only with the arm");
+      vision::Rig rig = vision::load_rig(o->rig);
+      vision::check_rig_sees_field(rig, sys.arm_world().field());
+      vision::Calibration calib = o->calibration.empty() ? vision::exact_calibration(rig)
+                                                         : vision::load_calibration(o->calibration);
+      vision::check_calibration_matches(calib, rig);
+      cameras = std::make_unique<vision::CameraPerceptionSource>(
+          std::move(rig), vision::StereoModel(std::move(calib), sys.field()));
+      spec.perception_source = cameras.get();
+    }
     const system::PuttReport r = system::putt(sys, data, spec);
     if (!o->trajectory.empty()) write_file_atomic(o->trajectory, viz::trajectory_csv(r.outcome));
-    if (o->json)
-      fmt::print("{}\n", system::putt_json(sys, spec, r).dump());
-    else
+    if (o->json) {
+      nlohmann::json j = system::putt_json(sys, spec, r);
+      if (cameras && cameras->last()) {
+        const auto& st = cameras->last()->stats();
+        j["perception"] = {
+            {"source", "camera"},
+            {"frames", st.frames},
+            {"ball_stereo", st.ball_stereo},
+            {"ball_mono", st.ball_mono},
+            {"ball_lost", st.ball_lost},
+            {"ball_outliers", st.ball_outliers},
+            {"cpu_ms_per_frame", st.frames ? 1000 * st.cpu_seconds / st.frames : 0.0},
+            {"render_ms_per_frame", st.frames ? 1000 * st.render_seconds / st.frames : 0.0}};
+      }
+      fmt::print("{}\n", j.dump());
+    } else
       print_text(sys, spec, r);
   });
 }

@@ -371,14 +371,19 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
   CoreLoop run(world, p.ids, model, d);
   // The plant's vision: late and off by this putt's error.
   perception::SimulatorPerception truth(world, d);
-  perception::DelayedPerception delayed(truth, options.perception_latency,
+  perception::Perception& seen = options.perception_source != nullptr
+                                     ? options.perception_source->attach(world, d)
+                                     : static_cast<perception::Perception&>(truth);
+  perception::DelayedPerception delayed(seen, options.perception_latency,
                                         options.perceived_ball_offset);
   perception::StancePerception from_stance(
-      p.plant_vision ? static_cast<perception::Perception&>(delayed) : truth, options.stance);
+      p.plant_vision ? static_cast<perception::Perception&>(delayed) : seen, options.stance);
   if (!options.stance.identity())
     run.set_perception(&from_stance);
   else if (p.plant_vision)
     run.set_perception(&delayed);
+  else if (options.perception_source != nullptr)
+    run.set_perception(&seen);
   TorqueNoise torque_noise(model, run, options);
   if (torque_noise.enabled()) run.set_hooks(&torque_noise);
   Stepper step{run, d};

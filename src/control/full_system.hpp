@@ -76,6 +76,10 @@ struct FullPuttOptions {
   double perception_latency = 0.0;
   /// [m] The module perceives the ball moved by this for the whole putt (the vision's error).
   std::array<double, 2> perceived_ball_offset{0.0, 0.0};
+  /// Not owned. What the module perceives instead of the simulator's truth (cameras that render
+  /// the simulation: vision/camera_perception.hpp); the plant's latency and offset and the
+  /// stance apply on top. nullptr: the truth.
+  perception::PerceptionSource* perception_source = nullptr;
 
   // --- Where the arm stands (a mobile base beside the ball; robot/wam_model.hpp). The identity:
   // the fixed arm beside the tee. Otherwise the ball starts at the stance's position and the

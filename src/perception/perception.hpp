@@ -12,6 +12,11 @@
 #include "perception/vision_feed.hpp"
 #include "robot/wam_model.hpp"
 
+struct mjData_;
+namespace mg::sim {
+class World;
+}
+
 namespace mg::perception {
 
 /// What a perception source knows at one instant.
@@ -28,6 +33,17 @@ class Perception {
   virtual ~Perception() = default;
   /// The current ball and hole at `now` [s, caller's monotonic clock]. Never throws.
   virtual Perceived perceive(double now) noexcept = 0;
+};
+
+/// Makes the perception a full-system putt's module reads from the simulation it runs, in place
+/// of the simulator's truth (control::FullPuttOptions::perception_source): the cameras of
+/// vision/camera_perception.hpp render `world` in the state `d`. Called once per putt after the
+/// ball is placed; the perception returned stays valid until the next call. Not thread-safe:
+/// one source per thread.
+class PerceptionSource {
+ public:
+  virtual ~PerceptionSource() = default;
+  virtual Perception& attach(const sim::World& world, const mjData_* d) = 0;
 };
 
 /// A source as a plant's vision really is (plant/plant.hpp): what `source` perceived `latency`

@@ -40,6 +40,7 @@ PuttReport putt(const System& sys, SystemData& data, const PuttSpec& spec) {
   control::FullPuttOptions options;
   options.max_duration = spec.max_duration;
   options.record_interval = spec.record_interval;
+  options.perception_source = spec.perception_source;
   control::FullPuttResult f;
   if (spec.world) {
     if (!hit_reachable(sys, spec.angle, spec.speed))

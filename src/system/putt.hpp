@@ -39,6 +39,9 @@ struct PuttSpec {
   double max_duration = 30.0;    ///< [s] give up after this simulated time
   double record_interval = 0.0;  ///< [s] ball trajectory spacing (0: none); with the arm from
                                  ///< the club's first contact
+  /// Not owned. With the arm: what the module perceives instead of the simulator's truth
+  /// (control::FullPuttOptions::perception_source; the cameras). nullptr: the truth.
+  perception::PerceptionSource* perception_source = nullptr;
 };
 
 /// What happened.

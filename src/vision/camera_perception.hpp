@@ -1,0 +1,82 @@
+#pragma once
+/// The control module's eyes in simulator mode with cameras (`--perception camera`): the rig's
+/// cameras render the running simulation at the rig's rate in simulated time, the stereo
+/// pipeline (vision/stereo_pipeline.hpp) finds ball and hole with the calibration (the robot's
+/// belief), and each frame's estimate is released `latency` after its capture. Fresh while the
+/// last accepted ball measurement is at most `max_age` old: a ball the cameras lost (occluded
+/// by the arm, in the cup) goes stale, and the module holds instead of hitting.
+///
+/// Not real-time: a capture renders (milliseconds). It is for lockstep simulation, where time is
+/// the simulation's; a real rig runs the same pipeline in its own process.
+#include <array>
+#include <memory>
+#include <optional>
+
+#include "perception/perception.hpp"
+#include "vision/rig_renderer.hpp"
+#include "vision/stereo_pipeline.hpp"
+
+namespace mg::vision {
+
+/// What the cameras did over a run.
+struct CameraStats {
+  long frames = 0;            ///< stereo frames captured
+  long ball_stereo = 0;       ///< ... where the ball was triangulated
+  long ball_mono = 0;         ///< ... placed from one camera
+  long ball_lost = 0;         ///< ... not found (or refused)
+  long ball_outliers = 0;     ///< measurements the filter refused
+  double cpu_seconds = 0;     ///< detection + triangulation + filter [s, thread CPU]
+  double render_seconds = 0;  ///< rendering [s, wall]
+};
+
+class CameraPerception final : public perception::Perception {
+ public:
+  /// Renders the state of `d` (a data of renderer.world()) with `renderer`; the pipeline's model
+  /// is `model`. Holds references: all must outlive it.
+  CameraPerception(RigRenderer& renderer, const StereoModel& model, const mjData* d);
+  perception::Perceived perceive(double now) noexcept override;
+
+  const StereoData& data() const { return data_; }
+  const CameraStats& stats() const { return stats_; }
+  /// The last released estimate (ball_in_cup: the ball vanished at the hole).
+  const StereoEstimate& estimate() const { return released_; }
+
+ private:
+  RigRenderer* renderer_;
+  const StereoModel* model_;
+  const mjData* d_;
+  StereoData data_;
+  CameraStats stats_;
+  double period_, latency_;
+  double next_capture_ = 0.0;
+  bool started_ = false;
+  static constexpr int kPending = 64;
+  std::array<StereoEstimate, kPending> pending_{};
+  std::array<double, kPending> release_{};
+  std::array<double, kPending> stamp_{};
+  int head_ = 0, count_ = 0;
+  StereoEstimate released_;
+  double released_stamp_ = -1e300;
+};
+
+/// A PerceptionSource of cameras: one hidden OpenGL window (made here: needs a display, or
+/// `xvfb-run -a`), a RigRenderer per world it is attached to, a fresh CameraPerception per putt.
+class CameraPerceptionSource final : public perception::PerceptionSource {
+ public:
+  /// Throws Error (no display) or InputError (rig).
+  CameraPerceptionSource(Rig rig, StereoModel model);
+  ~CameraPerceptionSource() override;
+  perception::Perception& attach(const sim::World& world, const mjData* d) override;
+  /// The last putt's perception (nullptr before the first).
+  const CameraPerception* last() const { return perception_.get(); }
+
+ private:
+  struct Gl;
+  std::unique_ptr<Gl> gl_;
+  Rig rig_;
+  StereoModel model_;
+  std::unique_ptr<RigRenderer> renderer_;
+  std::unique_ptr<CameraPerception> perception_;
+};
+
+}  // namespace mg::vision
