@@ -7,17 +7,20 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "belief/belief.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "experiments/evaluate.hpp"
+#include "experiments/identify.hpp"
 #include "experiments/learning_curves.hpp"
 #include "learning/learner.hpp"
 #include "selfteach/self_teach.hpp"
@@ -30,8 +33,9 @@ namespace {
 void add_self_teach(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string situations, balls, strategy, log, out, prior;
+    std::string situations, balls, strategy, log, out, prior, belief_out;
     int budget = 0;
+    int identify = 0;
     int batch = 1;
     double arrival = 0.0;
     std::uint64_t seed = 1;
@@ -66,21 +70,56 @@ void add_self_teach(CLI::App& app) {
   cmd->add_option(
       "--prior", a->prior,
       "Start from this learner model (learned elsewhere; the result is a residual over it)");
+  cmd->add_option("--identify", a->identify,
+                  "Spend the first N putts of the budget identifying the world (as `identify`), "
+                  "then learn in that belief (docs/belief.md); 0: learn in the given belief")
+      ->check(CLI::Range(0, 200))
+      ->capture_default_str();
+  cmd->add_option("--belief-out", a->belief_out, "With --identify: the belief file to write")
+      ->check(output_file());
   cmd->callback([a] {
+    if (a->identify > 0 && a->identify >= a->budget)
+      throw InputError(fmt::format("--identify: expected fewer putts than --budget ({}), got {}",
+                                   a->budget, a->identify));
+    if (!a->belief_out.empty() && a->identify == 0)
+      throw InputError("--belief-out: needs --identify (no belief is identified without it)");
+    if (!a->belief_out.empty()) check_output_file(a->belief_out);
     selfteach::SelfTeachOptions o;
     if (!a->prior.empty()) {
       auto prior = std::make_shared<learning::Model>(learning::load_model(a->prior));
       experiments::check_playable_model(*prior, a->prior);
       o.prior = std::move(prior);
     }
-    o.budget = a->budget;
+    o.budget = a->budget - a->identify;
     o.batch = a->batch;
     o.seed = a->seed;
     o.threads = a->sys.threads;
     o.arrival_speed = a->arrival;
     o.validate();
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
-                             load_plant_arg(a->sys.plant), load_belief_arg(a->sys.belief));
+    const control::ModuleConfig config =
+        system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model);
+    const plant::Plant plant = load_plant_arg(a->sys.plant);
+    plant::Plant believed = load_belief_arg(a->sys.belief);
+    if (a->identify > 0) {
+      // The belief first: identify's putts, its fit with the given belief as the prior.
+      std::optional<belief::Belief> prior;
+      if (!a->sys.belief.empty()) prior = belief::load_belief(a->sys.belief);
+      const system::System before(config, plant, believed);
+      Progress id_bar("identify", a->identify);
+      const auto id = experiments::identify_world(config, before, a->identify, a->balls, a->seed,
+                                                  prior, [&](int k) { id_bar.update(k); });
+      id_bar.finish();
+      believed = id.belief.estimate;
+      fmt::print(
+          "identified the world in {} putts: rolling resistance {:.4g}, slope ({:.2g}, "
+          "{:.2g}), club speed scale {:.4g}\n",
+          a->identify, plant::true_rolling_resistance(before.survey(), id.belief.estimate),
+          id.belief.estimate.field.extra_slope[0], id.belief.estimate.field.extra_slope[1],
+          id.belief.estimate.arm.club_speed_scale);
+      if (!a->belief_out.empty())
+        write_file_atomic(a->belief_out, belief::belief_to_yaml(id.belief));
+    }
+    const system::System sys(config, plant, believed);
     field::Situations region = field::region_from_spec(sys.field(), a->situations, a->balls);
     if (!a->strategy.empty())
       region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));

@@ -154,9 +154,10 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
         auto hits = predict_hits(model, system.field(), situations);
         // A fixed speed is one the model learned on the surveyed green: played as the arrival
         // speed it gave there (the same bits without a belief).
-        if (const double* fixed = model.fixed_value("speed"))
+        // So is the speed of an angle-only region, however the model carries it.
+        if (!region.learn_speed || model.fixed_value("speed") != nullptr)
           for (std::size_t i = 0; i < hits.size(); ++i)
-            hits[i].speed = system::believed_fixed_speed(system, situations[i], *fixed);
+            hits[i].speed = system::believed_fixed_speed(system, situations[i], hits[i].speed);
         return hits;
       },
       region, options, progress);
@@ -355,8 +356,8 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
     r.hole = s.hole;
     r.ball = s.ball;
     r.predicted = predict_hits(out.learned, field, std::vector<field::Situation>{s})[0];
-    if (const double* fixed = out.learned.fixed_value("speed"))
-      r.predicted.speed = system::believed_fixed_speed(system, s, *fixed);
+    if (!region.learn_speed || out.learned.fixed_value("speed") != nullptr)
+      r.predicted.speed = system::believed_fixed_speed(system, s, r.predicted.speed);
     const double a = r.predicted.angle, v = r.predicted.speed;
     r.in_envelope = system::hit_reachable(system, a, v);
     int added = 0;

@@ -277,4 +277,13 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
   return id;
 }
 
+Identification identify_world(const control::ModuleConfig& config, const system::System& truth,
+                              int putts, const std::string& balls, std::uint64_t seed,
+                              const std::optional<belief::Belief>& prior,
+                              const std::function<void(int)>& done) {
+  std::vector<IdentifyHit> hits = plan_identification(truth, putts, balls, seed);
+  play_identification(truth, hits, truth.plant().perception.noise, seed, done);
+  return identify_belief(config, truth.survey(), hits, hits.size(), prior);
+}
+
 }  // namespace mg::experiments

@@ -73,6 +73,15 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
                                const std::vector<IdentifyHit>& hits, std::size_t n,
                                const std::optional<belief::Belief>& prior);
 
+/// The whole procedure on `truth` (the world the putts happen in, built from `config`; its
+/// field() is what the robot believes before): plan `putts` hits, play them with the arm,
+/// perceive them with the truth's vision noise, and fit the belief with `prior`. Seeded by `seed`;
+/// `done(k)` after each putt. Throws as its parts.
+Identification identify_world(const control::ModuleConfig& config, const system::System& truth,
+                              int putts, const std::string& balls, std::uint64_t seed,
+                              const std::optional<belief::Belief>& prior,
+                              const std::function<void(int)>& done = {});
+
 /// [s] The window of the launch direction (belief::path_direction) in a path: from 30 ms after
 /// the launch to 0.5 s, or to the first sample near a border, an obstacle or the hole.
 std::array<double, 2> launch_window(const field::Field& field, const belief::ObservedPath& path);

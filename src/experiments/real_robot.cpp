@@ -65,10 +65,8 @@ std::map<std::string, std::string> real_robot_rows(
   // The revised belief: the robot's first identification putts, watched through the plant's
   // vision (experiments/identify.hpp); the rest of its own putts adapt the model in that belief.
   const int identify_putts = std::min(opt.identify_putts, opt.adaptation_putts);
-  std::vector<IdentifyHit> hits =
-      plan_identification(real, identify_putts, "", derive_seed(opt.seed, 68));
-  play_identification(real, hits, opt.plant.perception.noise, derive_seed(opt.seed, 68));
-  const Identification id = identify_belief(config, real.survey(), hits, hits.size(), std::nullopt);
+  const Identification id =
+      identify_world(config, real, identify_putts, "", derive_seed(opt.seed, 68), std::nullopt);
   const system::System revised(config, belief, opt.plant, id.belief.estimate);
   write_file_atomic(opt.csv_path(name + "_real_robot_belief.yaml"),
                     belief::belief_to_yaml(id.belief));

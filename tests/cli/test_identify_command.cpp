@@ -78,6 +78,13 @@ TEST(IdentifyCommand, BadInputsAreOneLineAndExitTwoBeforeAnyPutt) {
            "identify --field flat --balls box:9,10:0,1:2,2",
            "identify --field flat --putts 0",
            "identify --field flat --putts nan",
+           // self-teach's identification: fewer putts than the budget, a belief to write only
+           // with it, a writable place for it.
+           "self-teach --field flat --budget 3 --identify 3 -o " + scratch("m.json").string(),
+           "self-teach --field flat --budget 5 --belief-out " + scratch("b.yaml").string() +
+               " -o " + scratch("m.json").string(),
+           "self-teach --field flat --budget 5 --identify 2 --belief-out " + fifo.string() +
+               " -o " + scratch("m.json").string(),
        }) {
     const auto r = run_minigolf(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
