@@ -1,5 +1,5 @@
-// identify_report [PLANTS] [PUTTS] [BALLS]: how well `minigolf identify` finds the world (issue 35,
-// docs/belief.md). Per field (flat, regular-hill, arctan, multiple-hills): PLANTS random plants
+// identify_report [PLANTS] [PUTTS] [BALLS]: how well `minigolf identify` finds the world
+// (docs/belief.md). Per field (flat, regular-hill, arctan, multiple-hills): PLANTS random plants
 // (plant::random_plant(1..PLANTS), default 10) and the shipped stand-in data/plants/real-wam.yaml;
 // on each the robot plays PUTTS identification putts (default 10) with the arm in the true world,
 // perceived with the plant's vision error, and fits its belief from the first 1, 3, 5 and 10 of

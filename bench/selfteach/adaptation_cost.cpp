@@ -1,4 +1,4 @@
-// adaptation_cost [PUTTS] [REPEATS]: CPU time per adaptation putt (issue 18), on each shipped field
+// adaptation_cost [PUTTS] [REPEATS]: CPU time per adaptation putt, on each shipped field
 // with the GPR model of its shipped data set as the nominal prior, on `plant random --seed 1`:
 // self-teach --prior (the robot chooses targets) and evaluate --learn (random situations), each
 // PUTTS putts (default 10), REPEATS times (default 3). The learning share is the total minus the

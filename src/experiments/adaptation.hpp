@@ -1,5 +1,5 @@
 #pragma once
-/// The adaptation study (issue 18, docs/reality.md): a model learned in the nominal simulator,
+/// The adaptation study (docs/reality.md): a model learned in the nominal simulator,
 /// played on seeded random plants (plant::random_plant) of a field, before and after a few of the
 /// robot's own putts there. Per plant: what the nominal model sinks, the plant's oracle ceiling
 /// (the teacher under the plant, allowed to see the truth), and what the adapted model sinks after

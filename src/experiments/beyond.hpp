@@ -1,5 +1,5 @@
 #pragma once
-/// The "beyond the thesis" part of `minigolf reproduce` for one field (issue 10): learning curves
+/// The "beyond the thesis" part of `minigolf reproduce` for one field: learning curves
 /// of the self-taught robot and its baselines against their own full-system putts, the goal check,
 /// the hindsight labels' precision, and success under perception and execution noise.
 #include <functional>

@@ -59,7 +59,7 @@ struct EvaluateOptions {
   int threads = 0;
   bool oracle = true;               ///< also run the teacher on every situation
   teacher::TeacherOptions teacher;  ///< for the oracle
-  // --- Noise (issue 10). Zero: the run is unchanged, bit for bit.
+  // --- Noise. Zero: the run is unchanged, bit for bit.
   /// Std [m] of the perceived hole's and the perceived ball's position error, per axis (as the
   /// network vision feed adds): the robot chooses its putt for the xi it perceives.
   double perception_noise = 0.0;

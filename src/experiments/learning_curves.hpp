@@ -1,5 +1,5 @@
 #pragma once
-/// Learning curves (issue 10): success on the same random test situations against the
+/// Learning curves: success on the same random test situations against the
 /// full-system putts a learner has spent, misses included, for
 ///   self-teach    the robot alone (selfteach::self_teach);
 ///   teacher-gpr   the thesis protocol: the teacher collects examples at random situations of the

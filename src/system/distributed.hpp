@@ -1,5 +1,5 @@
 #pragma once
-/// Scale-out over processes with MPI (optional at build time; ARCHITECTURE.md "system").
+/// Scale-out over processes with MPI (optional at build time; docs/architecture.md).
 ///
 /// Started by an MPI launcher (`mpirun -np N minigolf ...`, `srun --mpi=pmix minigolf ...`), every
 /// process runs the whole command on the same inputs; only the independent jobs of

@@ -1,5 +1,5 @@
 #pragma once
-/// One place that turns a configuration into a ready minigolf system (ARCHITECTURE.md "system"):
+/// One place that turns a configuration into a ready minigolf system (docs/architecture.md):
 /// the field, the field's world with the WAM and club, the same field's ball-only world, the
 /// hitting model and the module model. A `System` is immutable after construction and shared by
 /// every thread; each thread owns a `SystemData` (its `mjData`s and scratch). Commands and
@@ -32,7 +32,7 @@ std::filesystem::path resolve_data_path(const std::string& text);
 control::ModuleConfig load_config(const std::string& config_path, const std::string& field = "",
                                   const std::string& hitting_model = "");
 
-/// Belief and truth (ARCHITECTURE.md): `field()`, `module()` and `config()` are the robot's
+/// Belief and truth (docs/architecture.md): `field()`, `module()` and `config()` are the robot's
 /// knowledge, what the teacher, planner, self-teacher and learners read; the worlds are built from
 /// the truth, the field with the plant applied (plant::true_field) and the arm with the plant's
 /// friction and club, and arm_putt / ball_putt apply the plant's hole, launch and vision. With an

@@ -161,7 +161,7 @@ TEST(ConsoleSignalRealtime, KeepsTheRecordingWithTheThreadsRunning) {
   expect_recording_kept(dir, rec, read_all(out), SIGINT, status, "SIGINT");
 }
 
-// Issue 38, item 10: when the recording could not be written at the end (its folder gone), the
+// When the recording could not be written at the end (its folder gone), the
 // session said so but the console exited 0. Now the answer stays and the exit is 2 with one line.
 TEST(ConsoleRecording, ARecordingNotWrittenAtTheEndIsAnError) {
   Dir dir("mg_rec_lost");

@@ -72,7 +72,7 @@ TEST(PlantCommands, AnEmptyPlantGivesTheSameOutcome) {
 TEST(PlantCommands, BadPlantsAreOneLineAndExitTwo) {
   const auto unknown = write("unknown.yaml", "format_version: 1\nfield:\n  grass: 0.2\n");
   const auto range = write("range.yaml", "format_version: 1\narm:\n  club_speed_scale: 9\n");
-  // Issue 38, item 11: a 0-byte plant and one without its version were the identity.
+  // A 0-byte plant and one without its version were the identity.
   const auto zero = write("zero.yaml", "");
   const auto unversioned = write("unversioned.yaml", "arm:\n  club_speed_scale: 0.9\n");
   for (const std::string& cmd : std::vector<std::string>{

@@ -1,4 +1,4 @@
-// Issue 13, part 3 "silent wrong results": each reproducer gives a one-line error that names the
+// Each reproducer gives a one-line error that names the
 // problem and exit code 2 (never a NaN printed with exit 0, a model written that is then
 // rejected, a wrapped-around seed or an ignored argument).
 #include <gtest/gtest.h>
@@ -189,7 +189,7 @@ TEST_F(Robustness, MalformedCommandLineNumbersAreInputErrors) {
   }
 }
 
-// ---- Issue 22: the gaps a hostile round of testing found; each is exit 2, one line, and the
+// ---- The gaps a hostile round of testing found; each is exit 2, one line, and the
 // target untouched (or a bounded, finite answer).
 
 TEST_F(Robustness, FigureWritersNeverReplaceFifosLinksOrDevices) {
@@ -362,7 +362,7 @@ TEST_F(Robustness, ConsoleRefusesARecordingToADeviceWhenItIsAsked) {
   EXPECT_EQ(r.out.find("recording to /dev/full"), std::string::npos) << r.out;
 }
 
-// ---- Issue 38: the fourth hostile round.
+// ---- The fourth hostile round.
 
 // Item 4: self-teach, evaluate (also --learn --save-model) and study adaptation ran everything,
 // then refused their output (adaptation after 6.6 s). Every target is checked as the command

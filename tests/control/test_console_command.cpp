@@ -61,7 +61,7 @@ TEST(ConsoleCommand, RandomBytesNeverCrash) {
   }
 }
 
-// Issue 38, item 10: a 100,000-character unknown command was echoed whole in the answer.
+// A 100,000-character unknown command was echoed whole in the answer.
 TEST(ConsoleCommand, AnUnknownCommandIsQuotedShortOnOneLine) {
   const ConsoleParse p = parse_console_line(std::string(100000, 'x'));
   EXPECT_EQ(p.error,

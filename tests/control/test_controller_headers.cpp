@@ -1,4 +1,4 @@
-// Issue 20: the controller knows no simulator. Its headers (the module and what it includes: the
+// The controller knows no simulator. Its headers (the module and what it includes: the
 // arm interface, the config, the state machine, the hitting DS, perception, the arm model) are
 // compiled here alone: had one of them included MuJoCo, mjVERSION_HEADER would be defined.
 #include "control/arm_interface.hpp"

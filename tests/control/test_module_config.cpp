@@ -78,7 +78,7 @@ TEST(ModuleConfig, GroupedKeysReadAsFlatOnesAndAWrongGroupIsNamed) {
   }
 }
 
-// Issue 38, item 6: a key twice kept the first; a second document was ignored.
+// A key twice kept the first; a second document was ignored.
 TEST(ModuleConfig, DuplicateKeysAndSecondDocumentsAreRefused) {
   const std::pair<const char*, const char*> cases[] = {
       {"kp: 100\nkp: 200\n", "cfg: kp: duplicate key"},

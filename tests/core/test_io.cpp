@@ -32,7 +32,7 @@ TEST(Io, MissingFileIsIoError) {
   EXPECT_THROW(write_file_atomic("/nonexistent/dir/file.txt", "x"), IoError);
 }
 
-// Found by fuzzing (issue 13): the atomic writer replaced FIFOs, links and device nodes.
+// Found by fuzzing: the atomic writer replaced FIFOs, links and device nodes.
 TEST(Io, AtomicWriteNeverReplacesWhatIsNotARegularFile) {
   const auto dir = std::filesystem::temp_directory_path() / ("mg_io_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
@@ -51,7 +51,7 @@ TEST(Io, AtomicWriteNeverReplacesWhatIsNotARegularFile) {
   std::filesystem::remove_all(dir);
 }
 
-// Issue 22: input files are regular and bounded; FIFOs, devices and huge files are refused at
+// Input files are regular and bounded; FIFOs, devices and huge files are refused at
 // once (a FIFO with no writer would block forever, /dev/zero would exhaust memory).
 TEST(Io, InputsMustBeRegularBoundedFiles) {
   const auto dir =

@@ -24,7 +24,7 @@ TEST(JsonIo, ParsesAndKeepsEveryKey) {
   EXPECT_TRUE(try_parse_json(R"({"a": 1, "b": [1, 2]})").has_value());
 }
 
-// Issue 38, item 6: nlohmann keeps the last of two equal keys and stops at a NUL byte; both are
+// nlohmann keeps the last of two equal keys and stops at a NUL byte; both are
 // refused, with one line naming the key (or the byte's offset).
 TEST(JsonIo, RefusesADuplicateKeyAnywhere) {
   EXPECT_EQ(error_of(R"({"par": 2, "par": 3})"),

@@ -112,7 +112,7 @@ TEST(Demonstrations, BadInputIsAClearError) {
   EXPECT_THROW(summarize_demonstrations(demos), InputError);
 }
 
-// Found by fuzzing (issue 13): one velocity of 1e200 crashed `ds fit --gaussians 1`.
+// Found by fuzzing: one velocity of 1e200 crashed `ds fit --gaussians 1`.
 TEST(Demonstrations, HugeValuesAreAClearErrorNamingTheFile) {
   const CsvTable t = parse_csv(
       "demo,t,x,y,z,vx,vy,vz\n0,0,0,0,0,1e200,0,0\n0,0.1,0.1,0,0,1,0,0\n0,0.2,0.2,0,0,0,0,0\n",

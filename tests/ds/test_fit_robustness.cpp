@@ -1,4 +1,4 @@
-// Issue 13, part 2: a hitting-model fit on valid demonstrations never fails, whatever K, on
+// A hitting-model fit on valid demonstrations never fails, whatever K, on
 // smooth (nearly noise-free) and noisy demonstrations; it says what it did on its own; and the
 // result is stable (deterministic, stable DS, every demonstration reproduced to the ball).
 #include <cmath>

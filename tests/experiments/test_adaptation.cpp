@@ -1,4 +1,4 @@
-// Adaptation (issue 18): a model from the nominal simulator in a world unlike it, corrected by the
+// Adaptation: a model from the nominal simulator in a world unlike it, corrected by the
 // robot's own putts; the study over random plants; zero plants change no bit.
 #include <memory>
 
@@ -43,7 +43,7 @@ TEST(Adaptation, ANominalModelFailsOnSlowerGrassAndAFewOwnPuttsRecoverIt) {
   const auto config = system::load_config("", "regular-hill");
   const system::System real(config, slow_grass());
   const auto& region = real.field().situations;
-  // The thesis's real-robot failure, measured: 10 of 60 (issue 18); here on 20 situations.
+  // The thesis's real-robot failure, measured: 10 of 60; here on 20 situations.
   const Evaluation before = evaluate_model(real, nominal_model(), region, play(20, 5));
   EXPECT_LE(before.sunk, 10);
   selfteach::SelfTeachOptions so;
@@ -69,7 +69,7 @@ TEST(Adaptation, LearningWhilePlayingTheResidualWayBeatsAppending) {
   const auto residual = evaluate_learning(real, nominal_model(), region, o);
   o.learn = LearnMode::kAppend;
   const auto appended = evaluate_learning(real, nominal_model(), region, o);
-  // Issue 18 measured appending at 8 of 60; the residual corrects from the first putt on.
+  // Appending was measured at 8 of 60; the residual corrects from the first putt on.
   EXPECT_GE(residual.evaluation.sunk, 27);
   EXPECT_GT(residual.evaluation.sunk, appended.evaluation.sunk + 5);
 }

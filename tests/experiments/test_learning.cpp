@@ -70,7 +70,7 @@ TEST(LearningWhilePlaying, OutcomesJoinTheModelAndItImproves) {
   EXPECT_FALSE(appended.learned.prior);
 }
 
-// Issue 19: learning while playing from balls anywhere: each putt is hit from its ball and its
+// Learning while playing from balls anywhere: each putt is hit from its ball and its
 // labels keep that ball.
 TEST(LearningWhilePlaying, FromBallsAnywhere) {
   const auto region = field::region_from_spec(hill().field(), "", "box:0,0.4:-0.2,0.2:2,2");
@@ -140,7 +140,7 @@ TEST(LearningCurves, SameBitsForOneAndTwoThreadsAndEveryLearnerRuns) {
     ASSERT_EQ(one.size(), 2u);
     EXPECT_EQ(one[0].putts, (std::vector<int>{2, 4}));
   }
-  // From balls anywhere (issue 19): the self-teaching and teacher learners run and keep their
+  // From balls anywhere: the self-teaching and teacher learners run and keep their
   // bits over threads; CRKR, which acts from the tee, refuses.
   const auto anywhere = field::region_from_spec(hill().field(), "", "box:0,0.4:-0.2,0.2:2,2");
   for (const auto learner : {CurveLearner::kSelfTeach, CurveLearner::kTeacherGpr}) {

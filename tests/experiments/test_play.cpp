@@ -167,7 +167,7 @@ TEST(Evaluate, CollectTrainEvaluateOnASmallCase) {
   fs::remove(data);
 }
 
-// Issue 19: a flat lane is translation-invariant, so a model of xi = hole - ball learned from the
+// A flat lane is translation-invariant, so a model of xi = hole - ball learned from the
 // tee plays from balls it never saw; collect writes the ball of each example.
 TEST(Evaluate, AFlatModelLearnedFromTheTeePlaysFromAnywhere) {
   const auto data = temp("tee.csv");

@@ -77,7 +77,7 @@ TEST(Field, BadInputNamesTheProblem) {
   expect_error_mentions(edited("surface:\n  - {type: plane}", "surface: []"), "surface");
 }
 
-// Issue 38, items 6 and 11: yaml-cpp read the first of two equal keys and ignored a second
+// yaml-cpp read the first of two equal keys and ignored a second
 // document; a name with a control character split one-line reports. All are refused.
 TEST(Field, DuplicateKeysSecondDocumentsAndControlCharactersInTheNameAreRefused) {
   expect_error_mentions(

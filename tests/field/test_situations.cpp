@@ -167,7 +167,7 @@ TEST(Situations, BoundsHoldEverySampleAndEveryCollectionPoint) {
   EXPECT_THROW(region_from_spec(f, "box:1.5,9:-0.3,0.3:3,3"), InputError);  // off the lane
 }
 
-// Issue 19: situations are (ball, hole) pairs; `ball:` gives where the ball may lie.
+// Situations are (ball, hole) pairs; `ball:` gives where the ball may lie.
 TEST(Situations, ABallRegionPairsEveryBallWithEveryHole) {
   const Field f =
       parse(with_situations("situations:\n  line: {from: [2.0, -0.2], to: [2.0, 0.2], count: 3}\n"

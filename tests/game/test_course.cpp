@@ -103,7 +103,7 @@ TEST(Course, BadFilesAreOneLineErrorsNamingFileAndKey) {
   }
 }
 
-// Issue 38: a hole walled off from the tee (item 7) played six strokes, three of them penalties;
+// A hole walled off from the tee played six strokes, three of them penalties;
 // a key twice or a second YAML document (item 6) was read as the first; a name with a newline
 // (item 11) split the progress line. Each is now refused at load, in one line naming the key.
 TEST(Course, UnplayableAmbiguousOrMultiLineCoursesAreRefused) {

@@ -107,7 +107,7 @@ TEST(Round, TheRobotHitsWithTheArmAndCountsItsLearningPutts) {
     }
 }
 
-// Issue 38, item 3: the rule that moves a ball resting over the cup's rim used the hole the
+// The rule that moves a ball resting over the cup's rim used the hole the
 // robot believes in; with the plant's hole 0.2 m further, balls resting on flat ground near the
 // believed hole were moved before the next stroke (a rest at x = 1.046 played from 1.076).
 TEST(Round, TheRimRuleUsesTheTrueCup) {

@@ -48,7 +48,7 @@ TEST(LearningDataset, ColumnsAreChosenByName) {
   EXPECT_EQ(q(1, 0), 6.0);
 }
 
-// Found by fuzzing (issue 13): a value of 1e200 crashed GMR training (squared distances overflow).
+// Found by fuzzing: a value of 1e200 crashed GMR training (squared distances overflow).
 TEST(LearningDataset, HugeValuesAreAClearErrorNamingTheFile) {
   const CsvTable t = parse_csv("xi_x,angle\n1e200,0\n2,0.1\n", "s.csv");
   try {

@@ -80,7 +80,7 @@ TEST(LearningModel, FarFromTheDataGprRevertsToTheMeanAndGmrContinuesTheTrend) {
   }
 }
 
-// Issue 13: a GPR fit's cost grows as N^3 (1,500 rows ran over 150 s): larger sets are refused
+// A GPR fit's cost grows as N^3 (1,500 rows ran over 150 s): larger sets are refused
 // at once with a message that says why and what to use instead.
 TEST(LearningModel, GprRefusesMoreRowsThanItsBoundAtOnce) {
   const Dataset big = linear_map(kMaxGprRows + 1, 9, 0.01);

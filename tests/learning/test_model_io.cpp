@@ -81,7 +81,7 @@ TEST(LearningModel, BrokenOrIncompatibleModelFilesAreClearErrors) {
   expect_model_error(j, "gmms");
 }
 
-// Issue 38, item 8: a model with an input named twice predicted one angle for every query (both
+// A model with an input named twice predicted one angle for every query (both
 // places read one column); also inside a residual's prior. Item 6: a key twice in the file (the
 // last won) is refused by the JSON reader.
 TEST(LearningModel, DuplicateNamesAndKeysAreRefused) {

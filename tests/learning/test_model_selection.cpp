@@ -36,7 +36,7 @@ TEST(LearningModel, NumberOfGaussiansByBicOrCrossValidation) {
 }
 
 TEST(LearningModel, RegCovarIsAPriorThatShrinksWithTheData) {
-  // Issue 13: reg_covar = 0.05 / N (at most 1e-2) unless cross-validation measures better.
+  // reg_covar = 0.05 / N (at most 1e-2) unless cross-validation measures better.
   // Up to 5 rows it is the old fixed 1e-2, to the bit.
   const Dataset few = flat_field(5, 21, 0.01);
   TrainOptions fixed = options(Method::kGmr, 2);

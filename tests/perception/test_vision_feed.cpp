@@ -47,7 +47,7 @@ TEST(VisionFeed, RulesPerDatagram) {
   EXPECT_DOUBLE_EQ(feed.age(1.25), 0.15);
 }
 
-// Found by fuzzing (issue 13): one datagram with seq 2^64-1 made every later one "reordered".
+// Found by fuzzing: one datagram with seq 2^64-1 made every later one "reordered".
 TEST(VisionFeed, NoSenderCanBlindTheFeed) {
   VisionFeed feed(UdpReceiver("127.0.0.1", 0));
   for (const char* huge : {"18446744073709551615", "9223372036854775808", "9007199254740993"}) {

@@ -25,7 +25,7 @@ TEST(VisionMessage, RoundTrip) {
   EXPECT_EQ(p.message.hole, m.hole);
 }
 
-// Issue 38, item 6: a key twice (the last one won, "format" too) and a valid datagram followed by
+// A key twice (the last one won, "format" too) and a valid datagram followed by
 // a NUL byte and garbage (nlohmann stopped at the NUL) are malformed, not accepted.
 TEST(VisionMessage, RejectsDuplicateKeysAndANulByte) {
   const std::string ok = R"({"format": "minigolf-vision/1", "seq": 1, "stamp": 0.5, )"

@@ -31,7 +31,7 @@ TEST(Plant, OnlyTheVersionIsTheIdentity) {
   EXPECT_FALSE(parse_plant("format_version: 1\nperception: {latency: 0.01}\n", "p.yaml").empty());
 }
 
-// Issue 38, item 11: a 0-byte plant or one without format_version was the identity; like fields
+// A 0-byte plant or one without format_version was the identity; like fields
 // and courses a plant now names its version. Item 6: a key given twice, or a second YAML
 // document, is refused (yaml-cpp read the first value and ignored the second document).
 TEST(Plant, TheVersionIsRequiredAndKeysAreUnique) {

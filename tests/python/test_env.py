@@ -263,7 +263,7 @@ def test_a_plant_is_the_world_the_episodes_happen_in(tmp_path):
 
 
 def test_a_pickled_environment_keeps_the_plant_it_was_made_with(tmp_path):
-    """Issue 38, item 11: unpickling re-read the plant file, so a clone played another world."""
+    """Unpickling re-read the plant file, so a clone played another world."""
     import pickle
     plant = tmp_path / "slow.yaml"
     plant.write_text("format_version: 1\nfield:\n  rolling_resistance_scale: 1.2\n")

@@ -314,7 +314,7 @@ def test_a_plant_is_the_world_and_equals_the_cli(tmp_path):
 
 
 def test_hostile_inputs_raise_instead_of_returning_nan(flat):
-    """Issue 22, items 2, 8, 10, 11: bounded, finite answers or a ValueError/OSError."""
+    """Bounded, finite answers or a ValueError/OSError."""
     f = flat.field
     for x, y in [(float("nan"), 0.0), (0.0, float("inf")), (None, None), ([0.0, float("nan")], [0.0, 0.0])]:
         with pytest.raises((ValueError, TypeError)):
@@ -336,7 +336,7 @@ def test_hostile_inputs_raise_instead_of_returning_nan(flat):
 
 
 def test_hostile_input_files_are_refused_at_once(tmp_path):
-    """Issue 22, items 7 and 9: /dev/zero and FIFOs as input files raise OSError at once."""
+    """/dev/zero and FIFOs as input files raise OSError at once."""
     import os
     fifo = tmp_path / "model.fifo"
     os.mkfifo(fifo)
@@ -348,7 +348,7 @@ def test_hostile_input_files_are_refused_at_once(tmp_path):
 
 
 def test_a_system_data_of_another_system_is_refused(flat):
-    """Issue 38, item 2: another System's data made MuJoCo wait for Enter (or crash)."""
+    """Another System's data made MuJoCo wait for Enter (or crash)."""
     bank = minigolf.System(field="bank-shot")
     other = flat.make_data()
     for kwargs in (dict(), dict(ball_only=True)):
@@ -372,7 +372,7 @@ def test_a_belief_is_the_field_file_as_the_robot_believes_it(tmp_path, flat):
 
 
 def test_a_mujoco_error_never_waits_for_enter(tmp_path):
-    """Issue 38, item 2: with stdin open, MuJoCo's own handler printed 'Press Enter to exit' and
+    """With stdin open, MuJoCo's own handler printed 'Press Enter to exit' and
     waited; the module's handler prints one line and ends the interpreter at once."""
     import sys
     script = ("import ctypes, ctypes.util, minigolf\n"
@@ -386,7 +386,7 @@ def test_a_mujoco_error_never_waits_for_enter(tmp_path):
 
 
 def test_world_angles_are_bounded_and_world_excludes_ball_only(flat):
-    """Issue 38, item 9: angle=1e18 with world=True and aim=1e308 played; ball_only with world was
+    """angle=1e18 with world=True and aim=1e308 played; ball_only with world was
     accepted although its own message forbids it."""
     with pytest.raises(ValueError, match=r"angle \(world\): expected a value in \[-3.15, 3.15\]"):
         flat.putt(1e18, 1.6, world=True)

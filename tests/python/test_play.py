@@ -56,7 +56,7 @@ def test_bad_arguments_are_value_errors(course):
         minigolf.play(course, player="tiger")
     with pytest.raises(ValueError, match="budget"):
         minigolf.play(course, budget=0)
-    # Issue 38, item 9: the CLI's --threads is 0..256; Python took -1 and 100000.
+    # The CLI's --threads is 0..256; Python took -1 and 100000.
     for threads in (-1, 257, 100000):
         with pytest.raises(ValueError, match="threads: expected 0..256"):
             minigolf.play(course, player="greedy", threads=threads)

@@ -283,7 +283,7 @@ def test_demo_wrapper(tmp_path, heights_csv):
     assert_png(run(tmp_path, script=script), tmp_path / "fields.png", 9 / (3.2 * 4))
     os.remove(tmp_path / "field_arctan.json")
     assert_error(run(tmp_path, script=script), "field_arctan.json")
-    # Issue 38, item 6: a key given twice (json keeps the last) is refused.
+    # A key given twice (json keeps the last) is refused.
     (tmp_path / "field_arctan.json").write_text(
         '{"tee": [0, 0], "hole": [2.0, 0.0], "hole": [9.0, 0.0], "hole_diameter": 0.108}')
     assert_error(run(tmp_path, script=script), "field_arctan.json", "duplicate key 'hole'")
@@ -482,7 +482,7 @@ def test_strength_draws_both_panels_and_rejects_bad_inputs(tmp_path):
 
 
 def test_figures_never_replace_fifos_links_or_devices(tmp_path, sweep_csv):
-    """Issue 22, item 1: the Python figure path keeps the atomic-file policy of the C++ writers."""
+    """The Python figure path keeps the atomic-file policy of the C++ writers."""
     fifo = tmp_path / "f.png"
     os.mkfifo(fifo)
     kept = tmp_path / "kept.txt"

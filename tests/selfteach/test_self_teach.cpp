@@ -41,7 +41,7 @@ TEST(SelfTeach, LearnsTheFlatFieldFromItsOwnPuttsWithinASmallBudget) {
   EXPECT_GE(ev.sunk, 36) << ev.sunk;
 }
 
-// Issue 19: with a ball region it chooses (ball, hole) situations, stands beside each ball, and
+// With a ball region it chooses (ball, hole) situations, stands beside each ball, and
 // learns the region's inputs; its labels keep their putt's ball.
 TEST(SelfTeach, LearnsFromBallsAnywhere) {
   const field::Situations region =

@@ -352,7 +352,7 @@ class StepCapture final : public SessionObserver {
   long steps_ = 0;
 };
 
-// Issue 20: the console and the putt harness run the one core loop. A console script that asks
+// The console and the putt harness run the one core loop. A console script that asks
 // for the rest pose and then for the hit at the tick the putt asked for it gives the putt's bits,
 // step for step, through contact and the whole roll.
 TEST(Session, AConsoleScriptAndAPuttGiveTheSameBits) {

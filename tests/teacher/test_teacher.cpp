@@ -33,7 +33,7 @@ TEST(Teacher, FindsASinkingPuttOnTheFlatFieldInAHandfulOfPutts) {
   EXPECT_NEAR(e.angle, std::atan2(0.1, 2.0), 0.02);
 }
 
-// Issue 19: a situation is (ball, hole). From a ball off the tee the base stands beside the ball
+// A situation is (ball, hole). From a ball off the tee the base stands beside the ball
 // facing as at the tee, so the example's angle is a world angle along hole - ball.
 TEST(Teacher, TeachesFromABallOffTheTee) {
   system::SystemData data(flat());
