@@ -164,6 +164,20 @@ TEST(Evaluate, CollectTrainEvaluateOnASmallCase) {
   EXPECT_DOUBLE_EQ(e1.oracle_ceiling, 1.0);
   EXPECT_LE(e1.ci95[0], e1.success_ratio);
   for (const auto& r : e1.rows) EXPECT_EQ(r.predicted.speed, 1.55);
+  // A slower green and a weaker arm that the robot believes in: the fixed speed is played as the
+  // arrival speed it gave on the survey (docs/belief.md), the same bits on any thread count.
+  plant::Plant slow;
+  slow.field.rolling_resistance_scale = 1.12;
+  slow.arm.club_speed_scale = 0.97;
+  const system::System aware(system::load_config("", "flat"), slow, slow);
+  eo.oracle = false;
+  eo.threads = 1;
+  const Evaluation b1 = evaluate_model(aware, model, line, eo);
+  eo.threads = 2;
+  const Evaluation b2 = evaluate_model(aware, model, line, eo);
+  EXPECT_EQ(evaluation_csv(b1, aware.field()), evaluation_csv(b2, aware.field()));
+  for (const auto& r : b1.rows) EXPECT_GT(r.predicted.speed, 1.55 / 0.97);
+  EXPECT_GE(b1.sunk, 5) << evaluation_csv(b1, aware.field());
   fs::remove(data);
 }
 
