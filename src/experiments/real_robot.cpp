@@ -20,17 +20,11 @@ namespace {
 
 std::string pct(double r) { return std::isfinite(r) ? fmt::format("{:.0f} %", 100.0 * r) : "-"; }
 
-struct Adapted {
-  Evaluation after;
-  int sunk_while_adapting = 0;
-};
-
 /// `nominal` adapted by `putts` of the robot's own putts in `system` (self-teach --prior: a
 /// residual over it), then played on the test situations.
-Adapted adapt(const system::System& system, const field::Situations& region,
-              const learning::Model& nominal, int putts, const RealRobotOptions& opt,
-              const EvaluateOptions& eo) {
-  Adapted a;
+Evaluation adapt(const system::System& system, const field::Situations& region,
+                 const learning::Model& nominal, int putts, const RealRobotOptions& opt,
+                 const EvaluateOptions& eo) {
   const learning::Model* played = &nominal;
   selfteach::SelfTeachResult taught;
   if (putts > 0) {
@@ -40,11 +34,9 @@ Adapted adapt(const system::System& system, const field::Situations& region,
     so.threads = opt.threads;
     so.prior = std::make_shared<const learning::Model>(nominal);
     taught = selfteach::self_teach(system, region, so);
-    a.sunk_while_adapting = taught.sunk;
     if (taught.trained) played = &taught.model;
   }
-  a.after = evaluate_model(system, *played, region, eo);
-  return a;
+  return evaluate_model(system, *played, region, eo);
 }
 
 }  // namespace
@@ -53,8 +45,8 @@ std::map<std::string, std::string> real_robot_rows(
     const control::ModuleConfig& config, const std::string& name, const field::Situations& region,
     const std::map<std::string, learning::Model>& models, const RealRobotOptions& opt) {
   std::map<std::string, std::string> md;
-  const field::Field belief = field::load_field(config.field);
-  const system::System real(config, belief, opt.plant);
+  const field::Field surveyed = field::load_field(config.field);
+  const system::System real(config, surveyed, opt.plant);
   EvaluateOptions eo;
   eo.situations = opt.attempts;
   eo.seed = derive_seed(opt.seed, 66);
@@ -67,7 +59,7 @@ std::map<std::string, std::string> real_robot_rows(
   const int identify_putts = std::min(opt.identify_putts, opt.adaptation_putts);
   const Identification id =
       identify_world(config, real, identify_putts, "", derive_seed(opt.seed, 68), std::nullopt);
-  const system::System revised(config, belief, opt.plant, id.belief.estimate);
+  const system::System revised(config, surveyed, opt.plant, id.belief.estimate);
   write_file_atomic(opt.csv_path(name + "_real_robot_belief.yaml"),
                     belief::belief_to_yaml(id.belief));
 
@@ -80,26 +72,25 @@ std::map<std::string, std::string> real_robot_rows(
     const Evaluation before = evaluate_model(real, nominal, region, eo);
     eo.oracle = false;
     // Today's adaptation: a residual over the model, the belief never revised.
-    const Adapted kept = adapt(real, region, nominal, opt.adaptation_putts, opt, eo);
+    const Evaluation kept = adapt(real, region, nominal, opt.adaptation_putts, opt, eo);
     // Revised: the belief from the identification putts, the residual from the rest.
-    const Adapted rev =
+    const Evaluation rev =
         adapt(revised, region, nominal, opt.adaptation_putts - identify_putts, opt, eo);
     const double thesis = opt.thesis ? opt.thesis(name, method) : NAN;
-    md["rows"] +=
-        fmt::format("| {} | {} | {} of {} | {} of {} | {} of {} | {} | {} |\n", name, method,
-                    before.sunk, opt.attempts, kept.after.sunk, opt.attempts, rev.after.sunk,
-                    opt.attempts, pct(before.oracle_ceiling), pct(thesis));
+    md["rows"] += fmt::format("| {} | {} | {} of {} | {} of {} | {} of {} | {} | {} |\n", name,
+                              method, before.sunk, opt.attempts, kept.sunk, opt.attempts, rev.sunk,
+                              opt.attempts, pct(before.oracle_ceiling), pct(thesis));
     csv += fmt::format("{},{},nominal,{},{},{},{}\n", name, method, opt.attempts, before.sunk,
                        before.oracle_found, std::isfinite(thesis) ? fmt::format("{}", thesis) : "");
     csv += fmt::format("{},{},adapted-{},{},{},,\n", name, method, opt.adaptation_putts,
-                       opt.attempts, kept.after.sunk);
+                       opt.attempts, kept.sunk);
     csv += fmt::format("{},{},revised-{}+{},{},{},,\n", name, method, identify_putts,
-                       opt.adaptation_putts - identify_putts, opt.attempts, rev.after.sunk);
+                       opt.adaptation_putts - identify_putts, opt.attempts, rev.sunk);
     opt.say(fmt::format(
         "{}: real-robot stand-in, {}: nominal {} of {}; after {} own putts: residual only {} of "
         "{}, revised belief {} of {}; oracle ceiling {}",
-        name, method, before.sunk, opt.attempts, opt.adaptation_putts, kept.after.sunk,
-        opt.attempts, rev.after.sunk, opt.attempts, pct(before.oracle_ceiling)));
+        name, method, before.sunk, opt.attempts, opt.adaptation_putts, kept.sunk, opt.attempts,
+        rev.sunk, opt.attempts, pct(before.oracle_ceiling)));
   }
   write_file_atomic(opt.csv_path(name + "_real_robot.csv"), csv);
 
