@@ -1,0 +1,214 @@
+// `evaluate --learn`: learning while playing (evaluate.hpp, evaluate_learning), apart from the
+// plain evaluation of a model in evaluate.cpp.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <fmt/format.h>
+
+#include "belief/prior.hpp"
+#include "core/error.hpp"
+#include "core/rng.hpp"
+#include "experiments/evaluate.hpp"
+#include "experiments/evaluate_detail.hpp"
+#include "selfteach/hindsight.hpp"
+#include "selfteach/planner.hpp"
+#include "selfteach/self_teach.hpp"
+#include "stats/gpr.hpp"
+
+namespace mg::experiments {
+
+namespace {
+
+LearningEvaluation evaluate_appending(const system::System& system, const learning::Model& model,
+                                      const field::Situations& region,
+                                      const EvaluateOptions& options,
+                                      const std::function<void(int, int)>& progress);
+
+/// The residual way: prior = the model, a residual GP on the hindsight labels
+/// (selfteach/planner.hpp).
+LearningEvaluation evaluate_residual(const system::System& system, const learning::Model& model,
+                                     const field::Situations& region,
+                                     const EvaluateOptions& options,
+                                     const std::function<void(int, int)>& progress) {
+  const auto& field = system.field();
+  selfteach::HindsightRules rules;
+  rules.learn_speed = region.learn_speed;
+  rules.arrival_speed = teacher::arrival_speed(field, options.teacher.strategy);
+  const double margin = selfteach::label_margin(region);
+  const double hole_radius = 0.5 * field.hole.diameter;
+  const double rolling_decel = belief::rolling_deceleration(field);
+  const auto situations = region.sample_situations(field, options.situations, options.seed);
+  detail::check_plant_holes(system, situations);
+  selfteach::Planner planner(system, region, rules.arrival_speed, options.seed,
+                             std::make_shared<const learning::Model>(model));
+
+  LearningEvaluation out;
+  out.learned = model;
+  Evaluation& e = out.evaluation;
+  e.rows.resize(situations.size());
+  system::SystemData data(system);
+  const int n = static_cast<int>(situations.size());
+  std::vector<selfteach::PuttRecord> putts;
+  std::vector<selfteach::Label> labels;
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const field::Situation& s = situations[k];
+    SituationResult& r = e.rows[k];
+    r.hole = s.hole;
+    r.ball = s.ball;
+    const auto plan = planner.plan(s);
+    r.predicted = predict_hits(model, field, std::vector<field::Situation>{s})[0];  // prior's std
+    r.predicted.angle = plan[0];
+    r.predicted.speed = plan[1];
+    const double a = r.predicted.angle, v = r.predicted.speed;
+    r.in_envelope = system::hit_reachable(system, a, v);
+    int added = 0;
+    if (r.in_envelope) {
+      control::FullPuttOptions po;
+      po.record_interval = 0.005;
+      po.torque_noise = options.torque_noise;
+      po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
+      control::FullPuttResult p = system::arm_hit(system, data, s, a, v, po);
+      r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
+      putts.push_back(selfteach::record_putt(s, a, v, p));
+      if (p.hit) {
+        const auto ls = selfteach::hindsight_labels(p.outcome.trajectory, s.ball, s.hole,
+                                                    hole_radius, rolling_decel, region, margin, a,
+                                                    v, static_cast<int>(putts.size()) - 1, rules);
+        added = static_cast<int>(ls.size());
+        labels.insert(labels.end(), ls.begin(), ls.end());
+      }
+      planner.update(putts, labels);
+      p.outcome.trajectory.clear();
+      r.outcome = std::move(p.outcome);
+    }
+    out.labels_added.push_back(added);
+    if (std::find(options.learn_checkpoints.begin(), options.learn_checkpoints.end(), i + 1) !=
+        options.learn_checkpoints.end())
+      out.checkpoint_models.emplace_back(i + 1, planner.residual_model(labels, -1));
+    if (progress) progress(i + 1, n);
+  }
+  out.learned = planner.residual_model(labels, -1);
+  for (const auto& r : e.rows) e.sunk += r.sunk;
+  e.success_ratio = static_cast<double>(e.sunk) / n;
+  e.ci95 = wilson_interval(e.sunk, n);
+  e.oracle_ceiling = std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+LearningEvaluation evaluate_appending(const system::System& system, const learning::Model& model,
+                                      const field::Situations& region,
+                                      const EvaluateOptions& options,
+                                      const std::function<void(int, int)>& progress) {
+  check_playable_model(model, "model", &system);
+  if (model.method != learning::Method::kGpr || model.prior)
+    throw InputError(fmt::format(
+        "--learn append: needs a plain GPR model (a {} model keeps no training data to add to)",
+        model.prior ? "residual" : learning::method_name(model.method)));
+  options.validate();
+  if (options.perception_noise > 0.0 || options.oracle)
+    throw InputError("--learn: plays without perception noise and without the oracle");
+  const auto& field = system.field();
+  const int ia = detail::output_index(model, "angle"), is = detail::output_index(model, "speed");
+  selfteach::HindsightRules rules;
+  rules.learn_speed = is >= 0;
+  rules.arrival_speed = teacher::arrival_speed(field, options.teacher.strategy);
+  const double margin = selfteach::label_margin(region);
+  const double hole_radius = 0.5 * field.hole.diameter;
+  const double rolling_decel = belief::rolling_deceleration(field);
+  const auto situations = region.sample_situations(field, options.situations, options.seed);
+  detail::check_plant_holes(system, situations);
+
+  LearningEvaluation out;
+  out.learned = model;
+  Evaluation& e = out.evaluation;
+  e.rows.resize(situations.size());
+  system::SystemData data(system);
+  const int n = static_cast<int>(situations.size());
+  Rng rng(derive_seed(options.seed, 17));
+  std::vector<Eigen::Index> tuned_at;
+  for (const auto& gp : model.gps) tuned_at.push_back(gp.size());
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const field::Situation& s = situations[k];
+    SituationResult& r = e.rows[k];
+    r.hole = s.hole;
+    r.ball = s.ball;
+    r.predicted = predict_hits(out.learned, field, std::vector<field::Situation>{s})[0];
+    if (!region.learn_speed || out.learned.fixed_value("speed") != nullptr)
+      r.predicted.speed = system::believed_fixed_speed(system, s, r.predicted.speed);
+    const double a = r.predicted.angle, v = r.predicted.speed;
+    r.in_envelope = system::hit_reachable(system, a, v);
+    int added = 0;
+    if (r.in_envelope) {
+      control::FullPuttOptions po;
+      po.record_interval = 0.005;
+      po.torque_noise = options.torque_noise;
+      po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
+      control::FullPuttResult p = system::arm_hit(system, data, s, a, v, po);
+      r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
+      if (p.hit) {
+        const auto labels =
+            selfteach::hindsight_labels(p.outcome.trajectory, s.ball, s.hole, hole_radius,
+                                        rolling_decel, region, margin, a, v, i, rules);
+        for (const auto& l : labels) {
+          Eigen::VectorXd x(out.learned.num_inputs());
+          for (int col = 0; col < out.learned.num_inputs(); ++col)
+            x(col) = field::situation_input(field,
+                                            out.learned.input_names[static_cast<std::size_t>(col)],
+                                            field::Situation{l.ball, l.hole});
+          for (int o = 0; o < out.learned.num_outputs(); ++o) {
+            stats::GpModel& gp = out.learned.gps[static_cast<std::size_t>(o)];
+            Eigen::MatrixXd xs(gp.inputs.rows() + 1, gp.inputs.cols());
+            xs << gp.inputs, x.transpose();
+            Eigen::VectorXd ys(gp.targets.size() + 1);
+            ys << gp.targets, (o == ia ? l.angle : o == is ? l.speed : std::nan(""));
+            if (!std::isfinite(ys(ys.size() - 1))) continue;  // an output the labels do not give
+            // Hyperparameters re-tuned whenever the data has grown by a third since they were.
+            auto& at = tuned_at[static_cast<std::size_t>(o)];
+            if (ys.size() >= at + std::max<Eigen::Index>(1, at / 3)) {
+              stats::GprOptions go;
+              go.restarts = 3;
+              gp = stats::fit_gpr(xs, ys, rng, go);
+              at = ys.size();
+            } else {
+              gp = stats::make_gp_model(xs, ys, gp.hyper);
+            }
+          }
+          ++added;
+        }
+      }
+      p.outcome.trajectory.clear();
+      r.outcome = std::move(p.outcome);
+    }
+    out.labels_added.push_back(added);
+    if (std::find(options.learn_checkpoints.begin(), options.learn_checkpoints.end(), i + 1) !=
+        options.learn_checkpoints.end())
+      out.checkpoint_models.emplace_back(i + 1, out.learned);
+    if (progress) progress(i + 1, n);
+  }
+  for (const auto& r : e.rows) e.sunk += r.sunk;
+  e.success_ratio = static_cast<double>(e.sunk) / n;
+  e.ci95 = wilson_interval(e.sunk, n);
+  e.oracle_ceiling = std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
+}  // namespace
+
+LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
+                                     const field::Situations& region,
+                                     const EvaluateOptions& options,
+                                     const std::function<void(int, int)>& progress) {
+  check_playable_model(model, "model", &system);
+  options.validate();
+  if (options.perception_noise > 0.0 || options.oracle)
+    throw InputError("--learn: plays without perception noise and without the oracle");
+  return options.learn == LearnMode::kAppend
+             ? evaluate_appending(system, model, region, options, progress)
+             : evaluate_residual(system, model, region, options, progress);
+}
+
+}  // namespace mg::experiments
