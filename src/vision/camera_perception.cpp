@@ -6,14 +6,6 @@
 #include "viz/renderer.hpp"
 
 namespace mg::vision {
-namespace {
-double thread_cpu() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-}  // namespace
-
 CameraPerception::CameraPerception(RigRenderer& renderer, const StereoModel& model, const mjData* d)
     : renderer_(&renderer),
       model_(&model),
@@ -34,10 +26,10 @@ perception::Perceived CameraPerception::perceive(double now) noexcept {
       const viz::Image* images[2] = {&renderer_->render(0, d_), &renderer_->render(1, d_)};
       stats_.render_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const double c0 = thread_cpu();
+      const double c0 = thread_cpu_seconds();
       const long outliers = data_.ball.rejected;
       stereo_frame(*model_, data_, images, now);
-      stats_.cpu_seconds += thread_cpu() - c0;
+      stats_.cpu_seconds += thread_cpu_seconds() - c0;
       ++stats_.frames;
       const int views = data_.last_ball.views;
       (views == 2 ? stats_.ball_stereo : views == 1 ? stats_.ball_mono : stats_.ball_lost)++;

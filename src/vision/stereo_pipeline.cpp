@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
 
 namespace mg::vision {
 namespace {
@@ -183,6 +184,12 @@ StereoEstimate stereo_estimate(const StereoModel& model, const StereoData& data,
       std::hypot(x - e.hole.x(), y - e.hole.y()) <= 0.5 * f.hole.diameter + f.ball.radius)
     e.ball_in_cup = true;
   return e;
+}
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 }  // namespace mg::vision

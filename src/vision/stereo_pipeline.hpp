@@ -86,4 +86,7 @@ void stereo_frame(const StereoModel& model, StereoData& data, const viz::Image* 
 
 StereoEstimate stereo_estimate(const StereoModel& model, const StereoData& data, double now);
 
+/// [s] CPU time of the calling thread (what the pipeline costs, apart from rendering).
+double thread_cpu_seconds();
+
 }  // namespace mg::vision

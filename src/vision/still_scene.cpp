@@ -24,14 +24,6 @@ void place_still_scene(const sim::World& world, mjData* d, std::array<double, 2>
   mj_forward(world.model(), d);
 }
 
-namespace {
-double thread_cpu() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-}  // namespace
-
 StillMeasurement measure_still(RigRenderer& renderer, const StereoModel& model, StereoData& data,
                                const mjData* d) {
   StillMeasurement m;
@@ -45,10 +37,10 @@ StillMeasurement measure_still(RigRenderer& renderer, const StereoModel& model, 
   for (int i = 0; i < 2; ++i) m.images.push_back(renderer.render(i, d));
   m.render_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const viz::Image* images[2] = {&m.images[0], &m.images[1]};
-  const double c0 = thread_cpu();
+  const double c0 = thread_cpu_seconds();
   m.ball = locate(model, data, images, true);
   m.hole = locate(model, data, images, false);
-  m.cpu_seconds = thread_cpu() - c0;
+  m.cpu_seconds = thread_cpu_seconds() - c0;
   return m;
 }
 
