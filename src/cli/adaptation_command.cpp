@@ -64,6 +64,9 @@ void add_adaptation_command(CLI::App& app) {
   cmd->add_option("--threads", a->o.threads, "Threads (0: all cores; results do not depend on it)")
       ->check(CLI::Range(0, 256));
   cmd->add_flag("--no-oracle", a->no_oracle, "Skip the plants' oracle ceilings");
+  cmd->add_flag(
+      "--no-revise", [a](std::int64_t) { a->o.revise = false; },
+      "The robot keeps its belief (it otherwise revises it from every adaptation putt)");
   cmd->add_option("-o,--output", a->out, "CSV to write (one row per plant and checkpoint)")
       ->check(output_file());
   cmd->add_flag("--json", a->json, "Print one JSON object");

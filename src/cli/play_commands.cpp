@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "belief/belief.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "cli/progress.hpp"
@@ -174,10 +175,11 @@ void add_collect(CLI::App& app) {
 void add_evaluate(CLI::App& app) {
   struct Args {
     SystemArgs sys;
-    std::string model, situations_spec, balls, rows, strategy, save_model, learn_mode = "residual";
+    std::string model, situations_spec, balls, rows, strategy, save_model, learn_mode = "residual",
+                                                                           belief_out;
     int situations = 30;
     std::uint64_t seed = 1;
-    bool json = false, no_oracle = false, learn = false;
+    bool json = false, no_oracle = false, learn = false, no_revise = false;
     double perception_noise = 0.0, torque_noise = 0.0;
   };
   auto a = std::make_shared<Args>();
@@ -211,12 +213,21 @@ void add_evaluate(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--save-model", a->save_model, "With --learn: write the model as it ends up here")
       ->check(output_file());
+  cmd->add_flag("--no-revise", a->no_revise,
+                "With --learn: keep the belief (it is otherwise revised from every putt played, "
+                "as `identify` does, and each later putt is planned in it)");
+  cmd->add_option("--belief-out", a->belief_out,
+                  "With --learn: write the belief the model ends up to be played in")
+      ->check(output_file());
   cmd->add_option("--perception-noise", a->perception_noise,
                   "Std [m] of the perceived hole and ball positions, per axis");
   cmd->add_option("--torque-noise", a->torque_noise,
                   "Joint torque noise std, fraction of the limits");
   cmd->callback([a] {
     if (!a->save_model.empty() && !a->learn) throw InputError("--save-model: only with --learn");
+    if (!a->belief_out.empty() && (!a->learn || a->no_revise))
+      throw InputError("--belief-out: only with --learn, revising");
+    if (a->no_revise && !a->learn) throw InputError("--no-revise: only with --learn");
     const learning::Model model = learning::load_model(a->model);
     const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
                              load_plant_arg(a->sys.plant), load_belief_arg(a->sys.belief));
@@ -232,6 +243,8 @@ void add_evaluate(CLI::App& app) {
     o.perception_noise = a->perception_noise;
     o.torque_noise = a->torque_noise;
     if (a->learn) o.oracle = false;
+    o.revise = a->learn && !a->no_revise;
+    if (o.revise && !a->sys.belief.empty()) o.belief_prior = belief::load_belief(a->sys.belief);
     if (a->learn_mode == "residual")
       o.learn = experiments::LearnMode::kResidual;
     else if (a->learn_mode == "append")
@@ -242,12 +255,18 @@ void add_evaluate(CLI::App& app) {
     Progress bar("evaluate", a->situations);
     experiments::Evaluation e;
     std::vector<int> labels_added;
+    int revisions = 0;
+    double revision_cpu = 0.0;
     if (a->learn) {
       auto le = experiments::evaluate_learning(sys, model, region, o,
                                                [&](int done, int) { bar.update(done); });
       e = std::move(le.evaluation);
       labels_added = std::move(le.labels_added);
       if (!a->save_model.empty()) learning::save_model(le.learned, a->save_model);
+      if (!a->belief_out.empty())
+        write_file_atomic(a->belief_out, belief::belief_to_yaml(le.belief));
+      revisions = le.revisions;
+      revision_cpu = le.revision_max_cpu;
     } else {
       e = experiments::evaluate_model(sys, model, region, o,
                                       [&](int done, int) { bar.update(done); });
@@ -285,6 +304,7 @@ void add_evaluate(CLI::App& app) {
           {"plant", plant_json(sys.plant())},
           {"learn", a->learn},
           {"labels_added", a->learn ? nlohmann::json(labels_added) : nlohmann::json()},
+          {"revisions", o.revise ? nlohmann::json(revisions) : nlohmann::json()},
           {"rows", rows}};
       fmt::print("{}\n", j.dump());
       return;
@@ -298,8 +318,11 @@ void add_evaluate(CLI::App& app) {
     if (a->learn)
       fmt::print(
           "learning while playing: {} hindsight labels added; first half sunk {} of {}, second "
-          "half {} of {}\n",
-          added, first_half, (e.rows.size() + 1) / 2, second_half, e.rows.size() / 2);
+          "half {} of {}{}\n",
+          added, first_half, (e.rows.size() + 1) / 2, second_half, e.rows.size() / 2,
+          o.revise ? fmt::format("; belief revised {} times (longest {:.2f} s CPU)", revisions,
+                                 revision_cpu)
+                   : "");
   });
 }
 

@@ -22,6 +22,7 @@
 #include "experiments/evaluate.hpp"
 #include "experiments/identify.hpp"
 #include "experiments/learning_curves.hpp"
+#include "experiments/revise.hpp"
 #include "learning/learner.hpp"
 #include "selfteach/self_teach.hpp"
 #include "system/distributed.hpp"
@@ -39,6 +40,7 @@ void add_self_teach(CLI::App& app) {
     int batch = 1;
     double arrival = 0.0;
     std::uint64_t seed = 1;
+    bool no_revise = false;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -75,14 +77,21 @@ void add_self_teach(CLI::App& app) {
                   "then learn in that belief (docs/belief.md); 0: learn in the given belief")
       ->check(CLI::Range(0, 200))
       ->capture_default_str();
-  cmd->add_option("--belief-out", a->belief_out, "With --identify: the belief file to write")
+  cmd->add_flag("--no-revise", a->no_revise,
+                "With --prior: keep the belief (the robot otherwise revises it from every putt "
+                "it plays, as `identify` does, and learns the residual in it)");
+  cmd->add_option("--belief-out", a->belief_out,
+                  "The belief the model is to be played in (with --identify, or --prior "
+                  "revising): the file to write")
       ->check(output_file());
   cmd->callback([a] {
     if (a->identify > 0 && a->identify >= a->budget)
       throw InputError(fmt::format("--identify: expected fewer putts than --budget ({}), got {}",
                                    a->budget, a->identify));
-    if (!a->belief_out.empty() && a->identify == 0)
-      throw InputError("--belief-out: needs --identify (no belief is identified without it)");
+    const bool revise = !a->prior.empty() && !a->no_revise;
+    if (!a->belief_out.empty() && a->identify == 0 && !revise)
+      throw InputError(
+          "--belief-out: needs --identify or a revising --prior (no belief is identified)");
     if (!a->belief_out.empty()) check_output_file(a->belief_out);
     selfteach::SelfTeachOptions o;
     if (!a->prior.empty()) {
@@ -100,26 +109,30 @@ void add_self_teach(CLI::App& app) {
         system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model);
     const plant::Plant plant = load_plant_arg(a->sys.plant);
     plant::Plant believed = load_belief_arg(a->sys.belief);
+    // What the robot believes, with its uncertainty: the given belief, then identify's.
+    std::optional<belief::Belief> prior;
+    if (!a->sys.belief.empty()) prior = belief::load_belief(a->sys.belief);
     if (a->identify > 0) {
       // The belief first: identify's putts, its fit with the given belief as the prior.
-      std::optional<belief::Belief> prior;
-      if (!a->sys.belief.empty()) prior = belief::load_belief(a->sys.belief);
       const system::System before(config, plant, believed);
       Progress id_bar("identify", a->identify);
       const auto id = experiments::identify_world(config, before, a->identify, a->balls, a->seed,
                                                   prior, [&](int k) { id_bar.update(k); });
       id_bar.finish();
       believed = id.belief.estimate;
+      prior = id.belief;
       fmt::print(
           "identified the world in {} putts: rolling resistance {:.4g}, slope ({:.2g}, "
           "{:.2g}), club speed scale {:.4g}\n",
           a->identify, plant::true_rolling_resistance(before.survey(), id.belief.estimate),
           id.belief.estimate.field.extra_slope[0], id.belief.estimate.field.extra_slope[1],
           id.belief.estimate.arm.club_speed_scale);
-      if (!a->belief_out.empty())
+      if (!a->belief_out.empty() && !revise)
         write_file_atomic(a->belief_out, belief::belief_to_yaml(id.belief));
     }
     const system::System sys(config, plant, believed);
+    std::unique_ptr<experiments::BeliefReviser> reviser;
+    if (revise) reviser = experiments::revise_hook(sys, o, prior);
     field::Situations region = field::region_from_spec(sys.field(), a->situations, a->balls);
     if (!a->strategy.empty())
       region.strategy = teacher::to_string(teacher::parse_strategy(a->strategy));
@@ -148,6 +161,17 @@ void add_self_teach(CLI::App& app) {
           sys.field().name, r.labels.size(), r.putts.size(), o.prior ? 1 : 2,
           a->log.empty() ? "" : fmt::format(" (the putts are in {})", a->log)));
     learning::save_model(r.model, a->out);
+    if (reviser) {
+      const auto& b = reviser->belief();
+      fmt::print(
+          "revised its belief {} times (longest {:.2f} s CPU): rolling resistance {:.4g}, slope "
+          "({:.2g}, {:.2g}), club speed scale {:.4g}; play the model in it{}\n",
+          reviser->revisions(), reviser->max_cpu(),
+          plant::true_rolling_resistance(sys.survey(), b.estimate), b.estimate.field.extra_slope[0],
+          b.estimate.field.extra_slope[1], b.estimate.arm.club_speed_scale,
+          a->belief_out.empty() ? " (--belief-out writes it)" : "");
+      if (!a->belief_out.empty()) write_file_atomic(a->belief_out, belief::belief_to_yaml(b));
+    }
     fmt::print(
         "self-taught {} in {} full-system putts ({} sank while learning): {} hindsight labels{}; "
         "labels at "
@@ -193,6 +217,9 @@ void add_curves(CLI::App& app) {
                   "Where the ball lies (as collect --balls; learners self-teach, adapt and "
                   "teacher-gpr)");
   cmd->add_option("-o,--output", a->out, "CSV to write")->check(output_file())->required();
+  cmd->add_flag(
+      "--no-revise", [a](std::int64_t) { a->o.revise = false; },
+      "adapt, adapt-play, append: keep the belief (they otherwise revise it from every putt)");
   cmd->callback([a] {
     const experiments::CurveLearner learner = experiments::parse_curve_learner(a->learner);
     if (experiments::needs_prior(learner) != !a->prior.empty())

@@ -95,6 +95,7 @@ std::vector<PlantAdaptation> adaptation_study(const control::ModuleConfig& confi
         c.teacher.learn_speed = region.learn_speed;
         c.teacher.fixed_speed = region.speed;
         c.prior = prior;
+        c.revise = options.revise;
         const auto runs = learning_curves(sys, region, options.learner, c);
         for (int s : runs.front().sunk) r.push_back(s);
         results[static_cast<std::size_t>(k)] = std::move(r);

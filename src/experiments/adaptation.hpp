@@ -26,6 +26,8 @@ struct AdaptationOptions {
   std::uint64_t seed = 1;                       ///< the adaptation runs
   CurveLearner learner = CurveLearner::kAdapt;  ///< adapt | adapt-play | append | self-teach
   bool oracle = true;                           ///< also the plant's oracle ceiling
+  /// The robot also revises its belief from its adaptation putts (CurveOptions::revise).
+  bool revise = true;
   int threads = 0;
   /// Plants given instead of random ones (a documented stand-in for the real WAM, say).
   std::vector<plant::Plant> given;

@@ -7,9 +7,11 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "belief/belief.hpp"
 #include "field/situations.hpp"
 #include "game/round.hpp"
 #include "learning/learner.hpp"
@@ -70,6 +72,13 @@ struct EvaluateOptions {
   LearnMode learn = LearnMode::kResidual;
   /// evaluate_learning: situation counts after which the model as it stands is also kept.
   std::vector<int> learn_checkpoints;
+  /// evaluate_learning: the robot also revises its belief from every putt it plays
+  /// (experiments::BeliefReviser) and plans each later putt in it; false: the system's belief
+  /// throughout (`--no-revise`).
+  bool revise = false;
+  /// The system's belief with its uncertainty, the revision's prior; none: the system's belief
+  /// with the survey's spread.
+  std::optional<belief::Belief> belief_prior;
   void validate() const;  ///< InputError naming the field
 };
 
@@ -123,6 +132,11 @@ struct LearningEvaluation {
   std::vector<int> labels_added;  ///< per situation
   learning::Model learned;
   std::vector<std::pair<int, learning::Model>> checkpoint_models;  ///< (situations played, model)
+  /// The belief each checkpoint model (and, last, `learned`) is to be played in.
+  std::vector<plant::Plant> checkpoint_beliefs;
+  belief::Belief belief;        ///< the belief at the end, with its std when it was revised
+  int revisions = 0;            ///< times the belief was revised (EvaluateOptions::revise)
+  double revision_max_cpu = 0;  ///< [s] the longest revision's CPU
 };
 LearningEvaluation evaluate_learning(const system::System& system, const learning::Model& model,
                                      const field::Situations& region,

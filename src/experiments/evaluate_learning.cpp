@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 
 #include <fmt/format.h>
@@ -12,6 +13,7 @@
 #include "core/rng.hpp"
 #include "experiments/evaluate.hpp"
 #include "experiments/evaluate_detail.hpp"
+#include "experiments/revise.hpp"
 #include "selfteach/hindsight.hpp"
 #include "selfteach/planner.hpp"
 #include "selfteach/self_teach.hpp"
@@ -20,6 +22,30 @@
 namespace mg::experiments {
 
 namespace {
+
+/// The robot's reviser of its belief when options.revise, else nullptr.
+std::unique_ptr<BeliefReviser> reviser_for(const system::System& system,
+                                           const EvaluateOptions& options) {
+  if (!options.revise) return nullptr;
+  return std::make_unique<BeliefReviser>(system, options.belief_prior,
+                                         derive_seed(options.seed, 71));
+}
+
+/// The evaluation's totals, and the belief the learned model is to be played in.
+void finish(LearningEvaluation& out, const system::System& last, const BeliefReviser* reviser) {
+  Evaluation& e = out.evaluation;
+  const int n = static_cast<int>(e.rows.size());
+  for (const auto& r : e.rows) e.sunk += r.sunk;
+  e.success_ratio = static_cast<double>(e.sunk) / n;
+  e.ci95 = wilson_interval(e.sunk, n);
+  e.oracle_ceiling = std::numeric_limits<double>::quiet_NaN();
+  out.belief.estimate = last.belief();
+  if (reviser != nullptr) {
+    out.belief = reviser->belief();
+    out.revisions = reviser->revisions();
+    out.revision_max_cpu = reviser->max_cpu();
+  }
+}
 
 LearningEvaluation evaluate_appending(const system::System& system, const learning::Model& model,
                                       const field::Situations& region,
@@ -32,69 +58,91 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
                                      const field::Situations& region,
                                      const EvaluateOptions& options,
                                      const std::function<void(int, int)>& progress) {
-  const auto& field = system.field();
+  // The system the robot plans in: `system` until its belief is revised (options.revise).
+  auto reviser = reviser_for(system, options);
+  const system::System* sys = &system;
   selfteach::HindsightRules rules;
   rules.learn_speed = region.learn_speed;
-  rules.arrival_speed = teacher::arrival_speed(field, options.teacher.strategy);
+  rules.arrival_speed = teacher::arrival_speed(system.field(), options.teacher.strategy);
   const double margin = selfteach::label_margin(region);
-  const double hole_radius = 0.5 * field.hole.diameter;
-  const double rolling_decel = belief::rolling_deceleration(field);
-  const auto situations = region.sample_situations(field, options.situations, options.seed);
+  const double hole_radius = 0.5 * system.field().hole.diameter;
+  double rolling_decel = belief::rolling_deceleration(system.field());
+  const auto situations =
+      region.sample_situations(system.field(), options.situations, options.seed);
   detail::check_plant_holes(system, situations);
-  selfteach::Planner planner(system, region, rules.arrival_speed, options.seed,
-                             std::make_shared<const learning::Model>(model));
+  const auto prior = std::make_shared<const learning::Model>(model);
+  auto planner =
+      std::make_unique<selfteach::Planner>(*sys, region, rules.arrival_speed, options.seed, prior);
 
   LearningEvaluation out;
   out.learned = model;
   Evaluation& e = out.evaluation;
   e.rows.resize(situations.size());
-  system::SystemData data(system);
+  auto data = std::make_unique<system::SystemData>(*sys);
   const int n = static_cast<int>(situations.size());
   std::vector<selfteach::PuttRecord> putts;
+  std::vector<std::vector<sim::BallSample>> paths;  // kept only to relabel after a revision
   std::vector<selfteach::Label> labels;
+  const auto label = [&](std::size_t k, const std::vector<sim::BallSample>& path) {
+    const auto& p = putts[k];
+    return selfteach::hindsight_labels(path, p.ball, p.target, hole_radius, rolling_decel, region,
+                                       margin, p.angle, p.speed, static_cast<int>(k), rules);
+  };
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const field::Situation& s = situations[k];
     SituationResult& r = e.rows[k];
     r.hole = s.hole;
     r.ball = s.ball;
-    const auto plan = planner.plan(s);
-    r.predicted = predict_hits(model, field, std::vector<field::Situation>{s})[0];  // prior's std
+    const auto plan = planner->plan(s);
+    r.predicted = predict_hits(model, sys->field(), std::vector<field::Situation>{s})[0];
     r.predicted.angle = plan[0];
     r.predicted.speed = plan[1];
     const double a = r.predicted.angle, v = r.predicted.speed;
-    r.in_envelope = system::hit_reachable(system, a, v);
+    r.in_envelope = system::hit_reachable(*sys, a, v);
     int added = 0;
     if (r.in_envelope) {
       control::FullPuttOptions po;
       po.record_interval = 0.005;
       po.torque_noise = options.torque_noise;
       po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-      control::FullPuttResult p = system::arm_hit(system, data, s, a, v, po);
+      control::FullPuttResult p = system::arm_hit(*sys, *data, s, a, v, po);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       putts.push_back(selfteach::record_putt(s, a, v, p));
+      if (reviser && reviser->observe(s, a, v, p)) {
+        // Every earlier path is read again in the revised belief, by a planner built in it.
+        sys = &reviser->system();
+        data = std::make_unique<system::SystemData>(*sys);
+        rolling_decel = belief::rolling_deceleration(sys->field());
+        planner = std::make_unique<selfteach::Planner>(*sys, region, rules.arrival_speed,
+                                                       options.seed, prior);
+        labels.clear();
+        for (std::size_t j = 0; j < paths.size(); ++j) {
+          const auto ls = label(j, paths[j]);
+          labels.insert(labels.end(), ls.begin(), ls.end());
+        }
+      }
       if (p.hit) {
-        const auto ls = selfteach::hindsight_labels(p.outcome.trajectory, s.ball, s.hole,
-                                                    hole_radius, rolling_decel, region, margin, a,
-                                                    v, static_cast<int>(putts.size()) - 1, rules);
+        const auto ls = label(putts.size() - 1, p.outcome.trajectory);
         added = static_cast<int>(ls.size());
         labels.insert(labels.end(), ls.begin(), ls.end());
       }
-      planner.update(putts, labels);
+      planner->update(putts, labels);
+      if (reviser)
+        paths.push_back(std::move(p.outcome.trajectory));  // a missed ball: an empty path
       p.outcome.trajectory.clear();
       r.outcome = std::move(p.outcome);
     }
     out.labels_added.push_back(added);
     if (std::find(options.learn_checkpoints.begin(), options.learn_checkpoints.end(), i + 1) !=
-        options.learn_checkpoints.end())
-      out.checkpoint_models.emplace_back(i + 1, planner.residual_model(labels, -1));
+        options.learn_checkpoints.end()) {
+      out.checkpoint_models.emplace_back(i + 1, planner->residual_model(labels, -1));
+      out.checkpoint_beliefs.push_back(sys->belief());
+    }
     if (progress) progress(i + 1, n);
   }
-  out.learned = planner.residual_model(labels, -1);
-  for (const auto& r : e.rows) e.sunk += r.sunk;
-  e.success_ratio = static_cast<double>(e.sunk) / n;
-  e.ci95 = wilson_interval(e.sunk, n);
-  e.oracle_ceiling = std::numeric_limits<double>::quiet_NaN();
+  out.learned = planner->residual_model(labels, -1);
+  finish(out, *sys, reviser.get());
   return out;
 }
 
@@ -117,7 +165,7 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
   rules.arrival_speed = teacher::arrival_speed(field, options.teacher.strategy);
   const double margin = selfteach::label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
-  const double rolling_decel = belief::rolling_deceleration(field);
+  double rolling_decel = belief::rolling_deceleration(field);
   const auto situations = region.sample_situations(field, options.situations, options.seed);
   detail::check_plant_holes(system, situations);
 
@@ -125,7 +173,10 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
   out.learned = model;
   Evaluation& e = out.evaluation;
   e.rows.resize(situations.size());
-  system::SystemData data(system);
+  // The system the robot plans in: `system` until its belief is revised (options.revise).
+  auto reviser = reviser_for(system, options);
+  const system::System* sys = &system;
+  auto data = std::make_unique<system::SystemData>(*sys);
   const int n = static_cast<int>(situations.size());
   Rng rng(derive_seed(options.seed, 17));
   std::vector<Eigen::Index> tuned_at;
@@ -136,19 +187,25 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
     SituationResult& r = e.rows[k];
     r.hole = s.hole;
     r.ball = s.ball;
-    r.predicted = predict_hits(out.learned, field, std::vector<field::Situation>{s})[0];
+    r.predicted = predict_hits(out.learned, sys->field(), std::vector<field::Situation>{s})[0];
     if (!region.learn_speed || out.learned.fixed_value("speed") != nullptr)
-      r.predicted.speed = system::believed_fixed_speed(system, s, r.predicted.speed);
+      r.predicted.speed = system::believed_fixed_speed(*sys, s, r.predicted.speed);
     const double a = r.predicted.angle, v = r.predicted.speed;
-    r.in_envelope = system::hit_reachable(system, a, v);
+    r.in_envelope = system::hit_reachable(*sys, a, v);
     int added = 0;
     if (r.in_envelope) {
       control::FullPuttOptions po;
       po.record_interval = 0.005;
       po.torque_noise = options.torque_noise;
       po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-      control::FullPuttResult p = system::arm_hit(system, data, s, a, v, po);
+      control::FullPuttResult p = system::arm_hit(*sys, *data, s, a, v, po);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
+      if (reviser && reviser->observe(s, a, v, p)) {
+        // Later putts and labels are read in the revised belief (the data appended stay).
+        sys = &reviser->system();
+        data = std::make_unique<system::SystemData>(*sys);
+        rolling_decel = belief::rolling_deceleration(sys->field());
+      }
       if (p.hit) {
         const auto labels =
             selfteach::hindsight_labels(p.outcome.trajectory, s.ball, s.hole, hole_radius,
@@ -156,7 +213,7 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
         for (const auto& l : labels) {
           Eigen::VectorXd x(out.learned.num_inputs());
           for (int col = 0; col < out.learned.num_inputs(); ++col)
-            x(col) = field::situation_input(field,
+            x(col) = field::situation_input(sys->field(),
                                             out.learned.input_names[static_cast<std::size_t>(col)],
                                             field::Situation{l.ball, l.hole});
           for (int o = 0; o < out.learned.num_outputs(); ++o) {
@@ -185,14 +242,13 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
     }
     out.labels_added.push_back(added);
     if (std::find(options.learn_checkpoints.begin(), options.learn_checkpoints.end(), i + 1) !=
-        options.learn_checkpoints.end())
+        options.learn_checkpoints.end()) {
       out.checkpoint_models.emplace_back(i + 1, out.learned);
+      out.checkpoint_beliefs.push_back(sys->belief());
+    }
     if (progress) progress(i + 1, n);
   }
-  for (const auto& r : e.rows) e.sunk += r.sunk;
-  e.success_ratio = static_cast<double>(e.sunk) / n;
-  e.ci95 = wilson_interval(e.sunk, n);
-  e.oracle_ceiling = std::numeric_limits<double>::quiet_NaN();
+  finish(out, *sys, reviser.get());
   return out;
 }
 

@@ -134,17 +134,24 @@ void play_identification(const system::System& truth, std::vector<IdentifyHit>& 
     IdentifyHit& h = hits[k];
     control::FullPuttOptions o;
     o.record_interval = 0.01;
-    const control::FullPuttResult r =
-        system::arm_hit(truth, data, h.situation, h.angle, h.speed, o);
-    h.hit = r.hit;
-    h.reached_speed = r.hit ? r.club.speed : 0.0;
-    h.path.samples.clear();
-    Rng rng(derive_seed(seed, k));
-    for (const sim::BallSample& s : r.outcome.trajectory) {
-      const double ex = gaussian(rng), ey = gaussian(rng);
-      h.path.samples.push_back({s.t, s.x + vision_noise * ex, s.y + vision_noise * ey});
-    }
+    perceive_hit(h, system::arm_hit(truth, data, h.situation, h.angle, h.speed, o), vision_noise,
+                 derive_seed(seed, k));
     if (done) done(static_cast<int>(k) + 1);
+  }
+}
+
+void perceive_hit(IdentifyHit& hit, const control::FullPuttResult& result, double vision_noise,
+                  std::uint64_t seed, double interval) {
+  hit.hit = result.hit;
+  hit.reached_speed = result.hit ? result.club.speed : 0.0;
+  hit.path.samples.clear();
+  Rng rng(seed);
+  double next = -1.0;
+  for (const sim::BallSample& s : result.outcome.trajectory) {
+    if (s.t < next) continue;
+    next = s.t + interval - 1e-9;
+    const double ex = gaussian(rng), ey = gaussian(rng);
+    hit.path.samples.push_back({s.t, s.x + vision_noise * ex, s.y + vision_noise * ey});
   }
 }
 

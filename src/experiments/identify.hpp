@@ -48,6 +48,12 @@ void play_identification(const system::System& truth, std::vector<IdentifyHit>& 
                          double vision_noise, std::uint64_t seed,
                          const std::function<void(int)>& done = {});
 
+/// What the robot measured of `hit` played with `result`: whether the club struck, the club speed
+/// its joints reached, and the ball path (samples at least `interval` [s] apart, from the first)
+/// with a Gaussian error of `vision_noise` [m] per axis and sample (stream `seed`).
+void perceive_hit(IdentifyHit& hit, const control::FullPuttResult& result, double vision_noise,
+                  std::uint64_t seed, double interval = 0.0);
+
 /// A belief identified from hits.
 struct Identification {
   belief::Belief belief;

@@ -9,6 +9,7 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "experiments/revise.hpp"
 #include "experiments/wire.hpp"
 #include "selfteach/crkr.hpp"
 #include "selfteach/self_teach.hpp"
@@ -92,14 +93,22 @@ std::vector<int> positive_checkpoints(const CurveOptions& o) {
 }
 
 /// The run's curve from the models at its checkpoints; checkpoint 0 plays the prior (if any).
+/// A checkpoint's model is played in its belief (`beliefs`, the same order; empty: `sys`'s).
 CurveRun curve_of(const system::System& sys, const field::Situations& region, const CurveOptions& o,
-                  const std::vector<std::pair<int, learning::Model>>& models) {
+                  const std::vector<std::pair<int, learning::Model>>& models,
+                  const std::vector<plant::Plant>& beliefs = {}) {
   CurveRun c;
   for (int k : o.checkpoints) {
     int sunk = 0;
     if (k == 0 && o.prior) sunk = play_model(sys, region, *o.prior, o);
-    for (const auto& [putts, model] : models)
-      if (putts == k) sunk = play_model(sys, region, model, o);
+    for (std::size_t j = 0; j < models.size(); ++j) {
+      if (models[j].first != k) continue;
+      if (j < beliefs.size() &&
+          plant::plant_to_yaml(beliefs[j]) != plant::plant_to_yaml(sys.belief()))
+        sunk = play_model(*system_in_belief(sys, beliefs[j]), region, models[j].second, o);
+      else
+        sunk = play_model(sys, region, models[j].second, o);
+    }
     c.putts.push_back(k);
     c.sunk.push_back(sunk);
   }
@@ -113,9 +122,13 @@ CurveRun self_teach_run(const system::System& sys, const field::Situations& regi
   so.seed = derive_seed(o.seed, static_cast<std::uint64_t>(run));
   so.threads = 1;
   so.checkpoints = positive_checkpoints(o);
-  if (from_prior) so.prior = o.prior;
+  std::unique_ptr<BeliefReviser> reviser;
+  if (from_prior) {
+    so.prior = o.prior;
+    if (o.revise) reviser = revise_hook(sys, so);
+  }
   const auto r = selfteach::self_teach(sys, region, so);
-  return curve_of(sys, region, o, r.checkpoint_models);
+  return curve_of(sys, region, o, r.checkpoint_models, r.checkpoint_beliefs);
 }
 
 CurveRun play_learning_run(const system::System& sys, const field::Situations& region, int run,
@@ -128,8 +141,9 @@ CurveRun play_learning_run(const system::System& sys, const field::Situations& r
   e.teacher = o.teacher;
   e.learn = mode;
   e.learn_checkpoints = positive_checkpoints(o);
+  e.revise = o.revise;
   const auto r = evaluate_learning(sys, *o.prior, region, e);
-  return curve_of(sys, region, o, r.checkpoint_models);
+  return curve_of(sys, region, o, r.checkpoint_models, r.checkpoint_beliefs);
 }
 
 CurveRun teacher_run(const system::System& sys, const field::Situations& region, int run,

@@ -49,6 +49,10 @@ struct CurveOptions {
   teacher::TeacherOptions
       teacher;  ///< teacher-gpr; adapt-play and append: the strategy's arrival speed
   std::shared_ptr<const learning::Model> prior;  ///< adapt, adapt-play, append
+  /// adapt, adapt-play, append: the robot also revises its belief from its putts
+  /// (experiments::BeliefReviser), and each checkpoint's model is tested in the belief it had
+  /// then; false: never revised (`--no-revise`).
+  bool revise = true;
   void validate() const;
 };
 

@@ -12,6 +12,7 @@
 #include "experiments/adaptation.hpp"
 #include "experiments/evaluate.hpp"
 #include "experiments/identify.hpp"
+#include "experiments/revise.hpp"
 #include "selfteach/self_teach.hpp"
 #include "system/system.hpp"
 
@@ -21,21 +22,28 @@ namespace {
 std::string pct(double r) { return std::isfinite(r) ? fmt::format("{:.0f} %", 100.0 * r) : "-"; }
 
 /// `nominal` adapted by `putts` of the robot's own putts in `system` (self-teach --prior: a
-/// residual over it), then played on the test situations.
+/// residual over it), then played on the test situations in the belief it ended with. With
+/// `revise` the robot also revises its belief from those putts, starting from `prior` (none:
+/// `system`'s belief with the survey's spread).
 Evaluation adapt(const system::System& system, const field::Situations& region,
-                 const learning::Model& nominal, int putts, const RealRobotOptions& opt,
+                 const learning::Model& nominal, int putts, bool revise,
+                 const std::optional<belief::Belief>& prior, const RealRobotOptions& opt,
                  const EvaluateOptions& eo) {
   const learning::Model* played = &nominal;
   selfteach::SelfTeachResult taught;
+  std::unique_ptr<BeliefReviser> reviser;
   if (putts > 0) {
     selfteach::SelfTeachOptions so;
     so.budget = putts;
     so.seed = opt.seed;
     so.threads = opt.threads;
     so.prior = std::make_shared<const learning::Model>(nominal);
+    if (revise) reviser = revise_hook(system, so, prior);
     taught = selfteach::self_teach(system, region, so);
     if (taught.trained) played = &taught.model;
   }
+  if (reviser && reviser->revisions() > 0)
+    return evaluate_model(reviser->system(), *played, region, eo);
   return evaluate_model(system, *played, region, eo);
 }
 
@@ -71,26 +79,33 @@ std::map<std::string, std::string> real_robot_rows(
     eo.oracle = true;
     const Evaluation before = evaluate_model(real, nominal, region, eo);
     eo.oracle = false;
-    // Today's adaptation: a residual over the model, the belief never revised.
-    const Evaluation kept = adapt(real, region, nominal, opt.adaptation_putts, opt, eo);
-    // Revised: the belief from the identification putts, the residual from the rest.
-    const Evaluation rev =
-        adapt(revised, region, nominal, opt.adaptation_putts - identify_putts, opt, eo);
+    // A residual over the model, the belief never revised.
+    const Evaluation kept =
+        adapt(real, region, nominal, opt.adaptation_putts, false, std::nullopt, opt, eo);
+    // The belief revised from every one of its own putts, with the residual.
+    const Evaluation learning =
+        adapt(real, region, nominal, opt.adaptation_putts, true, std::nullopt, opt, eo);
+    // The belief first from the identification putts, then revised on with the residual.
+    const Evaluation rev = adapt(revised, region, nominal, opt.adaptation_putts - identify_putts,
+                                 true, id.belief, opt, eo);
     const double thesis = opt.thesis ? opt.thesis(name, method) : NAN;
-    md["rows"] += fmt::format("| {} | {} | {} of {} | {} of {} | {} of {} | {} | {} |\n", name,
-                              method, before.sunk, opt.attempts, kept.sunk, opt.attempts, rev.sunk,
-                              opt.attempts, pct(before.oracle_ceiling), pct(thesis));
+    md["rows"] +=
+        fmt::format("| {} | {} | {} of {} | {} of {} | {} of {} | {} of {} | {} | {} |\n", name,
+                    method, before.sunk, opt.attempts, kept.sunk, opt.attempts, learning.sunk,
+                    opt.attempts, rev.sunk, opt.attempts, pct(before.oracle_ceiling), pct(thesis));
     csv += fmt::format("{},{},nominal,{},{},{},{}\n", name, method, opt.attempts, before.sunk,
                        before.oracle_found, std::isfinite(thesis) ? fmt::format("{}", thesis) : "");
     csv += fmt::format("{},{},adapted-{},{},{},,\n", name, method, opt.adaptation_putts,
                        opt.attempts, kept.sunk);
+    csv += fmt::format("{},{},revising-{},{},{},,\n", name, method, opt.adaptation_putts,
+                       opt.attempts, learning.sunk);
     csv += fmt::format("{},{},revised-{}+{},{},{},,\n", name, method, identify_putts,
                        opt.adaptation_putts - identify_putts, opt.attempts, rev.sunk);
     opt.say(fmt::format(
         "{}: real-robot stand-in, {}: nominal {} of {}; after {} own putts: residual only {} of "
-        "{}, revised belief {} of {}; oracle ceiling {}",
+        "{}, revising {} of {}, identified first {} of {}; oracle ceiling {}",
         name, method, before.sunk, opt.attempts, opt.adaptation_putts, kept.sunk, opt.attempts,
-        rev.sunk, opt.attempts, pct(before.oracle_ceiling)));
+        learning.sunk, opt.attempts, rev.sunk, opt.attempts, pct(before.oracle_ceiling)));
   }
   write_file_atomic(opt.csv_path(name + "_real_robot.csv"), csv);
 

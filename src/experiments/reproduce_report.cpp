@@ -157,16 +157,18 @@ std::string report_markdown(const Run& run, const Tables& t, const std::string& 
         "a missed tilt, a biased club face, a slower arm, friction, vision noise and latency: "
         "docs/reality.md) is the "
         "real arm: the nominal-simulator model as it is, then after 10 of the robot's own putts "
-        "there, two ways: a residual over the model in the world as surveyed (`self-teach "
-        "--prior`, the belief never revised), and the belief revised from the first {} putts "
-        "(`identify`: the green and the arm from the ball paths it saw) with the residual from "
-        "the other {}, every hit planned in that belief (an angle-only model's fixed speed "
-        "played as the arrival speed it gave on the surveyed green). The oracle ceiling is the "
+        "there, three ways: a residual over the model in the world as surveyed (`self-teach "
+        "--prior --no-revise`, the belief never revised); the same with the belief revised from "
+        "every putt it played (the green and the arm from the ball paths it saw, `self-teach "
+        "--prior`); and the belief identified first from {} putts (`identify`), then revised on "
+        "with the residual from the other {}. Every hit is planned in the belief of its time (an "
+        "angle-only model's fixed speed played as the arrival speed it gave on the surveyed "
+        "green). The oracle ceiling is the "
         "teacher's in the true world on the same 10 situations (angle-only fields: at the club "
         "speed that arrives there as the fixed speed did on the survey).\n\n"
-        "| field | method | nominal model | residual only, 10 own putts | revised belief, {} + {} "
-        "own putts | oracle ceiling | thesis real robot (for comparison) |\n"
-        "|---|---|---|---|---|---|---|\n",
+        "| field | method | nominal model | residual only, 10 own putts | revising, 10 own putts "
+        "| identified, {} + {} own putts | oracle ceiling | thesis real robot (for comparison) |\n"
+        "|---|---|---|---|---|---|---|---|\n",
         run.real_plant.source, run.real_plant.hash, kIdentify, 10 - kIdentify, kIdentify,
         10 - kIdentify);
     report += entry(t.real_md, "rows");

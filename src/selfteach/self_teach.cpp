@@ -185,6 +185,8 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
   options.validate();
   region.validate(system.field(), "self-teach region");
   system::check_real_holes(system.field(), system.plant(), region.corners(), "self-teach region");
+  // The system the robot plans in: `system`, until a revision of its belief (options.revise).
+  const system::System* sys = &system;
   const auto& field = system.field();
   HindsightRules rules;
   rules.learn_speed = region.learn_speed;
@@ -194,16 +196,17 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
           : teacher::arrival_speed(field, teacher::parse_strategy(region.strategy));
   const double margin = label_margin(region);
   const double hole_radius = 0.5 * field.hole.diameter;
-  const double rolling_decel = belief::rolling_deceleration(field);
+  double rolling_decel = belief::rolling_deceleration(field);
 
   SelfTeachResult res;
   res.arrival_speed = rules.arrival_speed;
-  Planner planner(system, region, rules.arrival_speed, options.seed, options.prior);
+  auto planner =
+      std::make_unique<Planner>(*sys, region, rules.arrival_speed, options.seed, options.prior);
   // With a prior model the result is a residual over it (real labels only); else GPR on labels.
   const auto learned = [&](int putts) {
-    return planner.has_model_prior()
-               ? planner.residual_model(res.labels, putts)
-               : model_from_labels(system, region, res.labels, putts, options.seed);
+    return planner->has_model_prior()
+               ? planner->residual_model(res.labels, putts)
+               : model_from_labels(*sys, region, res.labels, putts, options.seed);
   };
   const auto candidates = candidate_targets(field, region, options.candidates, options.seed);
   std::vector<field::Situation> tried;
@@ -238,7 +241,7 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
       std::array<double, 3> best_plan{};
       for (std::size_t c = 0; c < candidates.size(); ++c) {
         const auto& h = candidates[c];
-        auto plan = planner.plan(h);
+        auto plan = planner->plan(h);
         double s = plan[2];
         for (const auto& t : tried)
           if (distance(t, h) < kTriedRadius) s *= 0.5;
@@ -258,12 +261,30 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
     }
     std::vector<control::FullPuttResult> results(static_cast<std::size_t>(round));
     system::parallel_for(
-        system, round, system::thread_count(options.threads), [&](int i, system::SystemData& data) {
+        *sys, round, system::thread_count(options.threads), [&](int i, system::SystemData& data) {
           const auto k = static_cast<std::size_t>(i);
           control::FullPuttOptions po;
           po.record_interval = options.record_interval;
-          results[k] = system::arm_hit(system, data, targets[k], plans[k][0], plans[k][1], po);
+          results[k] = system::arm_hit(*sys, data, targets[k], plans[k][0], plans[k][1], po);
         });
+    // The belief first (in putt order: the same bits for any thread count), so that this round's
+    // labels are already read in it; a revision rebuilds the planner and the earlier labels.
+    bool revised = false;
+    if (options.revise)
+      for (int b = 0; b < round; ++b) {
+        const auto k = static_cast<std::size_t>(b);
+        if (const system::System* now =
+                options.revise(targets[k], plans[k][0], plans[k][1], results[k])) {
+          sys = now;
+          revised = true;
+        }
+      }
+    if (revised) {
+      rolling_decel = belief::rolling_deceleration(sys->field());
+      planner =
+          std::make_unique<Planner>(*sys, region, rules.arrival_speed, options.seed, options.prior);
+      relabel();
+    }
     for (int b = 0; b < round; ++b) {
       const auto k = static_cast<std::size_t>(b);
       const auto& r = results[k];
@@ -293,18 +314,19 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
     if (rules.learn_speed && failed_checks >= 2 && res.on_target_sunk < 0.9 * res.on_target &&
         rules.arrival_speed > 0.2) {
       rules.arrival_speed = std::max(0.2, 0.85 * rules.arrival_speed);
-      planner.set_arrival(rules.arrival_speed);
+      planner->set_arrival(rules.arrival_speed);
       ++res.arrival_corrections;
       failed_checks = 0;
       res.on_target = res.on_target_sunk = 0;
       relabel();
     }
-    planner.update(res.putts, res.labels);
+    planner->update(res.putts, res.labels);
     const int used = static_cast<int>(res.putts.size());
     while (next_checkpoint < checkpoints.size() && checkpoints[next_checkpoint] <= used) {
       const int c = checkpoints[next_checkpoint++];
       try {
         res.checkpoint_models.emplace_back(c, learned(c));
+        res.checkpoint_beliefs.push_back(sys->belief());
       } catch (const InputError&) {
         // Fewer than two labels so far: no model at this checkpoint (it counts as no success).
       }
@@ -312,7 +334,8 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
     if (progress) progress(used, options.budget);
   }
   res.arrival_speed = rules.arrival_speed;
-  res.trained = planner.has_model_prior() || res.labels.size() >= 2;
+  res.belief = sys->belief();
+  res.trained = planner->has_model_prior() || res.labels.size() >= 2;
   if (res.trained) res.model = learned(-1);
   return res;
 }

@@ -56,6 +56,14 @@ struct SelfTeachOptions {
   /// prediction instead of the physical one, and the model written is a residual over it
   /// (selfteach/planner.hpp). nullptr: from scratch.
   std::shared_ptr<const learning::Model> prior;
+  /// The robot revises its belief from its putts (experiments::BeliefReviser): called after each
+  /// round with each putt in order (its situation, angle [rad, world], club speed [m/s] and
+  /// result, trajectory recorded); returns the system in the revised belief, or nullptr to keep
+  /// the current one. On a revision the planner and every hindsight label are rebuilt in the new
+  /// belief. Empty: the belief is never revised.
+  std::function<const system::System*(const field::Situation&, double, double,
+                                      const control::FullPuttResult&)>
+      revise;
   void validate() const;  ///< InputError naming the field
 };
 
@@ -83,8 +91,12 @@ struct SelfTeachResult {
   std::vector<PuttRecord> putts;                    ///< in order
   std::vector<std::vector<sim::BallSample>> paths;  ///< each putt's ball path from the launch
   std::vector<std::pair<int, learning::Model>> checkpoint_models;  ///< (putts, model)
-  double arrival_speed = 0.0;             ///< final s* [m/s] (angle and speed regions)
-  int arrival_corrections = 0;            ///< times s* was lowered
+  /// The belief each checkpoint model is to be played in (the system's belief then; a model over
+  /// an angle-only region reads its fixed speed in it), in the same order.
+  std::vector<plant::Plant> checkpoint_beliefs;
+  plant::Plant belief;          ///< the belief `model` is to be played in (the last system's)
+  double arrival_speed = 0.0;   ///< final s* [m/s] (angle and speed regions)
+  int arrival_corrections = 0;  ///< times s* was lowered
   int on_target = 0, on_target_sunk = 0;  ///< putts labelled within 1 cm of their own target
   int sunk = 0;                           ///< putts that sank while teaching
 };

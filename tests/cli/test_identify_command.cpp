@@ -85,6 +85,12 @@ TEST(IdentifyCommand, BadInputsAreOneLineAndExitTwoBeforeAnyPutt) {
                " -o " + scratch("m.json").string(),
            "self-teach --field flat --budget 5 --identify 2 --belief-out " + fifo.string() +
                " -o " + scratch("m.json").string(),
+           // Revision while learning: a belief to write only when one is revised.
+           "self-teach --field flat --budget 5 --prior /no/such/model.json --belief-out " +
+               fifo.string() + " -o " + scratch("m.json").string(),
+           "evaluate --field flat --model /no/such/model.json --no-revise",
+           "evaluate --field flat --model /no/such/model.json --learn --no-revise --belief-out " +
+               scratch("b.yaml").string(),
        }) {
     const auto r = run_minigolf(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
