@@ -3,6 +3,7 @@
 //      [--model FIELD=FILE] [--seed S] [--plant P] [--config F] [--hitting-model F] [--threads N]
 //      [--json] [-o CSV]
 // play --course COURSE[,COURSE...] --compare [--seeds N] [-o MARKDOWN]
+// play --course COURSE --compare --plants N [--plant STAND_IN] [--plant-seed S]
 // A round of minigolf (game/round.hpp, docs/round.md).
 #include <map>
 #include <memory>
@@ -36,6 +37,8 @@ struct Args {
   std::string out;
   std::vector<std::string> models;  ///< FIELD=FILE
   bool no_revise = false;
+  int plants = 0;  ///< --compare over this many random plants (and --plant, if given)
+  std::uint64_t plant_seed = 1;
   SystemArgs system;
 };
 
@@ -91,8 +94,46 @@ void run_round(const Args& a) {
   }
 }
 
+/// The robot revising, the robot keeping its belief and the oracle on the stand-in (--plant) and
+/// --plants random plants: docs/round.md "Rounds on unknown plants".
+void run_plant_compare(const Args& a) {
+  if (a.courses.size() != 1) throw InputError("--plants: one course");
+  if (a.no_revise) throw InputError("--no-revise: not with --plants (it compares both)");
+  const game::Course course = game::load_course(a.courses[0]);
+  game::RoundOptions base = round_options(a);
+  if (!a.out.empty()) check_output_file(a.out);
+  const auto config = system::load_config(a.system.config, "", a.system.hitting_model);
+  std::vector<std::pair<std::string, plant::Plant>> worlds;
+  if (!a.system.plant.empty()) worlds.emplace_back(a.system.plant, load_plant_arg(a.system.plant));
+  for (int k = 0; k < a.plants; ++k) {
+    const std::uint64_t seed = a.plant_seed + static_cast<std::uint64_t>(k);
+    worlds.emplace_back(fmt::format("`plant random --seed {}`", seed), plant::random_plant(seed));
+  }
+  const int rounds = static_cast<int>(worlds.size()) * 3 * a.seeds;
+  Progress progress("play --compare --plants", rounds);
+  std::vector<game::PlantRounds> all;
+  for (const auto& [name, plant] : worlds) {
+    const int before = static_cast<int>(all.size()) * 3 * a.seeds;
+    game::PlantRounds p;
+    p.plant = name;
+    base.revise = true;
+    p.revising =
+        game::play_seeds(course, config, plant, {game::Player::kRobot, game::Player::kOracle}, base,
+                         a.seed, a.seeds, [&](int done, int) { progress.update(before + done); });
+    base.revise = false;
+    p.kept = game::play_seeds(course, config, plant, {game::Player::kRobot}, base, a.seed, a.seeds,
+                              [&](int done, int) { progress.update(before + 2 * a.seeds + done); });
+    all.push_back(std::move(p));
+  }
+  progress.finish();
+  const std::string md = game::plant_comparison_markdown(all, a.seeds);
+  if (!a.out.empty()) write_file_atomic(a.out, md);
+  fmt::print("{}", md);
+}
+
 /// Every player over `seeds` seeds on every course: the Markdown tables of docs/round.md.
 void run_compare(const Args& a) {
+  if (a.plants > 0) return run_plant_compare(a);
   std::vector<game::Course> courses;
   for (const auto& c : a.courses) courses.push_back(game::load_course(c));
   const game::RoundOptions base = round_options(a);
@@ -150,6 +191,15 @@ void add_round_command(CLI::App& app) {
   cmd->add_option("--seeds", a->seeds, "With --compare: seeds from --seed on")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
+  cmd->add_option("--plants", a->plants,
+                  "With --compare: the robot revising its belief, keeping it, and the oracle on "
+                  "this many random plants (and --plant, if given), one course")
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--plant-seed", a->plant_seed,
+                  "With --plants: plant k is `plant random --seed "
+                  "PLANT_SEED+k`")
+      ->check(unsigned_integer())
+      ->capture_default_str();
   cmd->add_flag("--json", a->json, "One JSON object (course, holes, putts, totals)");
   cmd->add_option("-o,--output", a->out, "CSV of every stroke (with --compare: the Markdown)")
       ->check(output_file());
@@ -166,6 +216,7 @@ void add_round_command(CLI::App& app) {
       ->capture_default_str();
   cmd->callback([a] {
     if (a->compare && a->json) throw InputError("--json: not with --compare (a Markdown table)");
+    if (a->plants > 0 && !a->compare) throw InputError("--plants: only with --compare");
     if (a->compare)
       run_compare(*a);
     else

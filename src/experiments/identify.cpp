@@ -24,6 +24,11 @@ constexpr double kLaunchRatio = 1.58;
 /// that slope part) and narrow (long rolls).
 constexpr std::array<double, 3> kWideAngles{0.6, 0.5, 0.7}, kNarrowAngles{0.12, 0.06, 0.18};
 
+/// [s] The launch window's end (launch_window) and the roll simulated when only the contact is
+/// read.
+constexpr double kLaunchWindowEnd = 0.5;
+constexpr double kContactOnly = 0.05;
+
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 /// A Gaussian draw (Box-Muller on 53-bit uniforms: the same on every platform).
@@ -176,7 +181,7 @@ belief::GreenPrior green_prior(const field::Field& surveyed,
 }
 
 std::array<double, 2> launch_window(const field::Field& field, const belief::ObservedPath& path) {
-  constexpr double kFrom = 0.03, kTo = 0.5;
+  constexpr double kFrom = 0.03, kTo = kLaunchWindowEnd;
   const std::array<double, 2> hole = path.hole ? *path.hole : field.hole.position;
   double to = kTo;
   double previous = kFrom;
@@ -231,7 +236,11 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
   for (std::size_t k = 0; k < n; ++k) {
     if (!hits[k].hit) continue;
     const IdentifyHit& h = hits[k];
-    const control::FullPuttResult r = system::arm_hit(own, data, h.situation, h.angle, h.speed);
+    // Only the club at the contact is read: the ball's roll is not simulated.
+    control::FullPuttOptions contact;
+    contact.max_duration = kContactOnly;
+    const control::FullPuttResult r =
+        system::arm_hit(own, data, h.situation, h.angle, h.speed, contact);
     belief::ArmObservation o;
     o.commanded_speed = h.speed;
     o.reached_speed = h.reached_speed;
@@ -250,6 +259,7 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
     const IdentifyHit& h = *used[k];
     control::FullPuttOptions o;
     o.record_interval = 0.01;
+    o.max_duration = kLaunchWindowEnd + 0.05;  // the launch window's part of the path
     const double speed = std::clamp(h.speed * scale, config.speed_min, config.speed_max);
     const control::FullPuttResult r = system::arm_hit(own, data, h.situation, h.angle, speed, o);
     if (!r.hit) continue;

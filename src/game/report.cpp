@@ -189,4 +189,48 @@ std::string comparison_markdown(const std::vector<CourseRounds>& all, int seeds,
   return md;
 }
 
+std::string plant_comparison_markdown(const std::vector<PlantRounds>& all, int seeds) {
+  if (all.empty()) return "";
+  const Course& course = all.front().revising.course;
+  std::vector<double> revising, kept, oracle;  // plant-major, then seed, then hole
+  std::string per_plant;
+  for (const auto& p : all) {
+    const std::vector<CourseRounds> one{p.revising}, other{p.kept};
+    const auto r = hole_strokes(one, Player::kRobot), o = hole_strokes(one, Player::kOracle),
+               k = hole_strokes(other, Player::kRobot);
+    if (r.size() != o.size() || r.size() != k.size())
+      throw InputError("plant comparison: the players played different holes");
+    const auto mean = [](const std::vector<double>& v) {
+      return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / v.size();
+    };
+    per_plant += fmt::format("| {} | {} | {:.2f} | {:.2f} | {:.2f} |\n", p.plant, r.size(), mean(r),
+                             mean(k), mean(o));
+    revising.insert(revising.end(), r.begin(), r.end());
+    kept.insert(kept.end(), k.begin(), k.end());
+    oracle.insert(oracle.end(), o.begin(), o.end());
+  }
+  const auto row = [&](const std::string& who, const std::vector<double>& v) {
+    std::vector<double> diff(v.size());
+    int aces = 0;
+    for (std::size_t h = 0; h < v.size(); ++h) {
+      diff[h] = v[h] - oracle[h];
+      aces += v[h] == 1.0;
+    }
+    const auto [m, ci] = mean_ci(v);
+    const auto [d, dci] = mean_ci(diff);
+    return fmt::format("| {} | {:.2f} ± {:.2f} | {:+.2f} ± {:.2f} | {:.0f} % |\n", who, m, ci, d,
+                       dci, v.empty() ? 0.0 : 100.0 * aces / static_cast<double>(v.size()));
+  };
+  return fmt::format(
+             "Course {} ({} holes) on {} worlds, {} seeds each: {} holes per player.\n\n"
+             "| player | strokes per hole (95 % CI) | vs oracle (paired 95 % CI) | hole-in-one "
+             "|\n|---|---|---|---|\n",
+             course.name, course.holes.size(), all.size(), seeds, oracle.size()) +
+         row("robot, revising its belief", revising) + row("robot, `--no-revise`", kept) +
+         row("oracle (sees the plant)", oracle) +
+         "\nMean strokes per hole, per world:\n\n| world | holes | robot revising | robot "
+         "`--no-revise` | oracle |\n|---|---|---|---|---|\n" +
+         per_plant;
+}
+
 }  // namespace mg::game

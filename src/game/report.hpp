@@ -59,4 +59,17 @@ PlayerSummary summarize(const std::vector<CourseRounds>& all, Player player);
 std::string comparison_markdown(const std::vector<CourseRounds>& all, int seeds,
                                 const std::string& plant_note);
 
+/// The rounds of one course in one world (a plant) by the robot revising its belief and the
+/// oracle (`revising`), and by the robot keeping its belief (`kept`, RoundOptions::revise false).
+struct PlantRounds {
+  std::string plant;  ///< its name in the table
+  CourseRounds revising;
+  CourseRounds kept;
+};
+
+/// The Markdown of docs/round.md "Rounds on unknown plants": strokes per hole per plant, then per
+/// player over every plant with the 95 % interval and the difference to the oracle paired hole
+/// by hole.
+std::string plant_comparison_markdown(const std::vector<PlantRounds>& all, int seeds);
+
 }  // namespace mg::game
