@@ -143,18 +143,19 @@ std::vector<std::array<double, 2>> predict_roll(const field::Field& surveyed,
   return out;
 }
 
-std::array<std::size_t, 2> rolling_span(const field::Field& field, const ObservedPath& path) {
+namespace {
+
+/// The rolling run of `path` from sample `first` on: [first, last) and whether it ended for good
+/// (a border, an obstacle, the hole, a stop, the path's end) or only for a while (a possible hop
+/// or slip over a crest, after which the ball rolls again).
+struct Run {
+  std::size_t last = 0;
+  bool final = true;
+};
+
+Run rolling_run(const field::Field& field, const ObservedPath& path, std::size_t first) {
   const auto& s = path.samples;
   const std::size_t n = s.size();
-  if (n < 3) return {0, 0};
-  // The slide: from the first samples' speed (a chord over the first 50 ms).
-  std::size_t j = 1;
-  while (j + 1 < n && s[j][0] - s[0][0] < 0.05) ++j;
-  const double v0 = std::hypot(s[j][1] - s[0][1], s[j][2] - s[0][2]) / (s[j][0] - s[0][0]);
-  const double slide = 2.0 * v0 / (7.0 * field.sliding_friction * kGravity);
-  const double t_cut = s[0][0] + kSlideFactor * slide + kSlideMargin;
-  std::size_t first = 0;
-  while (first < n && s[first][0] < t_cut) ++first;
   const double r = field.ball.radius;
   const auto& b = field.bounds;
   const std::array<double, 2> hole = path.hole ? *path.hole : field.hole.position;
@@ -178,19 +179,58 @@ std::array<std::size_t, 2> rolling_span(const field::Field& field, const Observe
       contact.emplace(normal);
     } else if (contact->advance(s[last][0] - s[last - 1][0], normal0, gravity0, normal, gravity) <
                kMinNormal * kGravity) {
-      break;
+      return {last, false};
     }
     const double sunk = -contact->e();
-    if (std::hypot(vx, vy) * sunk / (2.0 * r - sunk) > kMaxSlip) break;
+    if (std::hypot(vx, vy) * sunk / (2.0 * r - sunk) > kMaxSlip) return {last, false};
     normal0 = normal;
     gravity0 = gravity;
   }
+  return {last, true};
+}
+
+/// [s] After a possible hop or slip, the path is read again this much later (the ball has landed
+/// and its contact settled).
+constexpr double kResume = 0.1;
+
+}  // namespace
+
+std::array<std::size_t, 2> rolling_span(const field::Field& field, const ObservedPath& path) {
+  const auto& s = path.samples;
+  const std::size_t n = s.size();
+  if (n < 3) return {0, 0};
+  // The slide: from the first samples' speed (a chord over the first 50 ms).
+  std::size_t j = 1;
+  while (j + 1 < n && s[j][0] - s[0][0] < 0.05) ++j;
+  const double v0 = std::hypot(s[j][1] - s[0][1], s[j][2] - s[0][2]) / (s[j][0] - s[0][0]);
+  const double slide = 2.0 * v0 / (7.0 * field.sliding_friction * kGravity);
+  const double t_cut = s[0][0] + kSlideFactor * slide + kSlideMargin;
+  std::size_t first = 0;
+  while (first < n && s[first][0] < t_cut) ++first;
+  const std::size_t last = rolling_run(field, path, first).last;
   if (last < first + kMinSamples) return {first, first};
   return {first, last};
 }
 
+std::vector<std::array<std::size_t, 2>> rolling_spans(const field::Field& field,
+                                                      const ObservedPath& path) {
+  std::vector<std::array<std::size_t, 2>> out;
+  const auto& s = path.samples;
+  const std::size_t n = s.size();
+  std::size_t first = rolling_span(field, path)[0];
+  while (first < n) {
+    const Run run = rolling_run(field, path, first);
+    if (run.last >= first + kMinSamples) out.push_back({first, run.last});
+    if (run.final || run.last >= n) break;
+    std::size_t next = run.last + 1;
+    while (next < n && s[next][0] < s[run.last][0] + kResume) ++next;
+    first = next;
+  }
+  return out;
+}
+
 GreenEstimate fit_green(const field::Field& surveyed, const std::vector<ObservedPath>& paths,
-                        const GreenPrior& prior, double vision_noise) {
+                        const GreenPrior& prior, double vision_noise, bool every_run) {
   if (!(vision_noise >= 0.0) || !std::isfinite(vision_noise))
     throw InputError(
         fmt::format("fit_green: vision_noise: expected a finite std >= 0 m, got {}", vision_noise));
@@ -206,31 +246,42 @@ GreenEstimate fit_green(const field::Field& surveyed, const std::vector<Observed
   std::vector<FitPath> fit;
   for (std::size_t k = 0; k < paths.size(); ++k) {
     check_path(paths[k], k);
-    const auto span = rolling_span(surveyed, paths[k]);
-    PathFit& pf = est.paths[k];
-    pf.first = span[0];
-    pf.last = span[1];
-    if (span[1] <= span[0]) continue;
-    pf.used = true;
-    FitPath f;
-    f.index = k;
-    const auto& s = paths[k].samples;
-    const double t0 = s[span[0]][0];
-    for (std::size_t i = span[0]; i < span[1]; ++i) {
-      f.times.push_back(s[i][0]);
-      f.obs.push_back(s[i][1]);
-      f.obs.push_back(s[i][2]);
+    std::vector<std::array<std::size_t, 2>> spans;
+    if (every_run) {
+      spans = rolling_spans(surveyed, paths[k]);
+    } else if (const auto span = rolling_span(surveyed, paths[k]); span[1] > span[0]) {
+      spans.push_back(span);
     }
-    f.model.resize(f.obs.size());
-    // The start: a quadratic through the first samples (at most 0.3 s of them).
-    std::size_t m = 0;
-    while (m < f.times.size() && f.times[m] - t0 <= 0.3) ++m;
-    m = std::max<std::size_t>(m, std::min<std::size_t>(5, f.times.size()));
-    std::vector<double> tr(m);
-    for (std::size_t i = 0; i < m; ++i) tr[i] = f.times[i] - t0;
-    poly_fit(tr.data(), f.obs.data(), m, 2, m >= 6, f.start.x, f.start.vx);
-    poly_fit(tr.data(), f.obs.data() + 1, m, 2, m >= 6, f.start.y, f.start.vy);
-    fit.push_back(std::move(f));
+    PathFit& pf = est.paths[k];
+    if (spans.empty()) {
+      pf.first = pf.last = rolling_span(surveyed, paths[k])[0];
+      continue;
+    }
+    pf.first = spans.front()[0];
+    pf.last = spans.front()[1];
+    pf.used = true;
+    // Each run its own start state: the crest between two runs is not modelled.
+    for (const auto& span : spans) {
+      FitPath f;
+      f.index = k;
+      const auto& s = paths[k].samples;
+      const double t0 = s[span[0]][0];
+      for (std::size_t i = span[0]; i < span[1]; ++i) {
+        f.times.push_back(s[i][0]);
+        f.obs.push_back(s[i][1]);
+        f.obs.push_back(s[i][2]);
+      }
+      f.model.resize(f.obs.size());
+      // The start: a quadratic through the first samples (at most 0.3 s of them).
+      std::size_t m = 0;
+      while (m < f.times.size() && f.times[m] - t0 <= 0.3) ++m;
+      m = std::max<std::size_t>(m, std::min<std::size_t>(5, f.times.size()));
+      std::vector<double> tr(m);
+      for (std::size_t i = 0; i < m; ++i) tr[i] = f.times[i] - t0;
+      poly_fit(tr.data(), f.obs.data(), m, 2, m >= 6, f.start.x, f.start.vx);
+      poly_fit(tr.data(), f.obs.data() + 1, m, 2, m >= 6, f.start.y, f.start.vy);
+      fit.push_back(std::move(f));
+    }
   }
   if (fit.empty())
     throw NumericalError(fmt::format(
@@ -414,7 +465,8 @@ GreenEstimate fit_green(const field::Field& surveyed, const std::vector<Observed
 
   est.rolling_resistance = p(0);
   est.extra_slope = {p(1), p(2)};
-  est.paths_used = static_cast<int>(fit.size());
+  est.paths_used = 0;
+  for (const PathFit& pf : est.paths) est.paths_used += pf.used ? 1 : 0;
   est.samples_used = static_cast<int>(nobs / 2);
   data_cost(surveyed, fit, p);
   double total = 0.0;
@@ -424,6 +476,7 @@ GreenEstimate fit_green(const field::Field& surveyed, const std::vector<Observed
     for (std::size_t i = 0; i < f.obs.size(); ++i)
       sum += (f.model[i] - f.obs[i]) * (f.model[i] - f.obs[i]);
     total += sum;
+    if (k > 0 && fit[k - 1].index == f.index) continue;  // a later run of the same path
     PathFit& pf = est.paths[f.index];
     pf.start = local_state(p, k);
     pf.rms_residual = std::sqrt(sum / static_cast<double>(f.obs.size()));

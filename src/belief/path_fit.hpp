@@ -116,13 +116,22 @@ std::vector<std::array<double, 2>> predict_roll(const field::Field& surveyed,
 /// taken so fast that the normal force falls under half the weight).
 std::array<std::size_t, 2> rolling_span(const field::Field& surveyed, const ObservedPath& path);
 
+/// Every rolling run of `path` of at least kMinSamples samples: the first as rolling_span's,
+/// then, where a run ended at a possible hop or slip over a crest (not at a border, an obstacle,
+/// the hole or a stop), the next one from 0.1 s later, and so on. A putt over bumps is then
+/// read on both sides of each.
+std::vector<std::array<std::size_t, 2>> rolling_spans(const field::Field& surveyed,
+                                                      const ObservedPath& path);
+
 /// Fits rho and the tilt to the rolling part of `paths` (MAP with `prior`; each path's start
 /// state is fitted too, its spin with the prior kSpinPriorStd): the samples' vision
 /// error is `vision_noise` [m] std per axis, or, if 0, estimated from the residuals. The std of
 /// the result is the Gauss-Newton covariance's. Deterministic. Throws InputError for a
 /// non-finite sample, times not ascending or a negative vision noise, NumericalError when no
 /// path has enough rolling samples.
+/// `every_run`: each path's every rolling run (rolling_spans, each with its own start state);
+/// false: its first (rolling_span).
 GreenEstimate fit_green(const field::Field& surveyed, const std::vector<ObservedPath>& paths,
-                        const GreenPrior& prior, double vision_noise);
+                        const GreenPrior& prior, double vision_noise, bool every_run = false);
 
 }  // namespace mg::belief

@@ -199,13 +199,13 @@ std::array<double, 2> launch_window(const field::Field& field, const belief::Obs
 
 Identification identify_belief(const control::ModuleConfig& config, const field::Field& surveyed,
                                const std::vector<IdentifyHit>& hits, std::size_t n,
-                               const std::optional<belief::Belief>& prior) {
+                               const std::optional<belief::Belief>& prior, bool every_run) {
   n = std::min(n, hits.size());
   Identification id;
   std::vector<belief::ObservedPath> paths;
   for (std::size_t k = 0; k < n; ++k) paths.push_back(hits[k].path);
   double t0 = cpu_seconds();
-  id.green = belief::fit_green(surveyed, paths, green_prior(surveyed, prior), 0.0);
+  id.green = belief::fit_green(surveyed, paths, green_prior(surveyed, prior), 0.0, every_run);
   id.fit_cpu += cpu_seconds() - t0;
 
   belief::Belief& b = id.belief;

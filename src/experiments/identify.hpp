@@ -73,11 +73,12 @@ belief::GreenPrior green_prior(const field::Field& surveyed,
 /// the arm, predicting each hit in the robot's own model (`config`'s arm and hitting model on
 /// the believed lane, no plant). Arm keys of `prior` with a std are combined with the fit
 /// (inverse variances); the hole offset and sliding friction are the prior's (not identified
-/// from paths); the vision's noise is the green fit's rms residual. Throws NumericalError when
-/// no path rolls long enough.
+/// from paths); the vision's noise is the green fit's rms residual. `every_run`: the green from
+/// every rolling run of each path (belief::rolling_spans: putts over crests), else from its
+/// first. Throws NumericalError when no path rolls long enough.
 Identification identify_belief(const control::ModuleConfig& config, const field::Field& surveyed,
                                const std::vector<IdentifyHit>& hits, std::size_t n,
-                               const std::optional<belief::Belief>& prior);
+                               const std::optional<belief::Belief>& prior, bool every_run = false);
 
 /// The whole procedure on `truth` (the world the putts happen in, built from `config`; its
 /// field() is what the robot believes before): plan `putts` hits, play them with the arm,

@@ -43,7 +43,8 @@ bool BeliefReviser::observe(const field::Situation& situation, double angle, dou
   if (!prior && !start_.belief().empty()) prior = belief::Belief{start_.belief()};
   Identification id;
   try {
-    id = identify_belief(start_.config(), start_.survey(), hits_, hits_.size(), prior);
+    // Every run of a path: a learning putt crosses the lane's crests at speed.
+    id = identify_belief(start_.config(), start_.survey(), hits_, hits_.size(), prior, true);
   } catch (const NumericalError&) {
     return false;  // nothing rolled long enough to fit yet
   }

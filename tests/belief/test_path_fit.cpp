@@ -189,5 +189,38 @@ TEST(RollingSpan, DropsTheSlideAndStopsAtTheBorder) {
   EXPECT_GT(furthest, field.bounds[3] - field.ball.radius - 0.005);
 }
 
+// A putt over the bumps of multiple hills at a learning putt's speed: its first rolling run ends
+// at a crest, later runs read the lane beyond, and every run makes the green better known.
+TEST(RollingSpans, ReadAPuttOverCrestsOnBothSidesOfEach) {
+  const field::Field field = field::load_field("multiple-hills");
+  const plant::Plant plant = green_plant(0.85, 0.003, -0.003);
+  const std::vector<Shot> shots{{0.06, 2.9}, {0.09, 2.9}, {0.03, 2.8}, {0.1, 2.85}};
+  const auto paths = mujoco_paths(field, plant, shots, 0.0005);
+  std::size_t runs = 0;
+  for (const auto& p : paths) {
+    const auto spans = rolling_spans(field, p);
+    const auto first = rolling_span(field, p);
+    if (first[1] > first[0]) {
+      ASSERT_FALSE(spans.empty());
+      EXPECT_EQ(spans.front(), first);
+    }
+    for (std::size_t k = 0; k < spans.size(); ++k) {
+      EXPECT_GE(spans[k][1], spans[k][0] + 8);
+      if (k > 0) EXPECT_GT(spans[k][0], spans[k - 1][1]);  // apart, in order
+    }
+    runs += spans.size();
+  }
+  EXPECT_GT(runs, paths.size()) << "no putt crossed a crest at speed";
+  const GreenPrior prior{
+      field.rolling_resistance, {0.0, 0.0}, {0.25 * field.rolling_resistance, 0.01, 0.01}};
+  const GreenEstimate first_only = fit_green(field, paths, prior, 0.0);
+  const GreenEstimate every = fit_green(field, paths, prior, 0.0, true);
+  EXPECT_GT(every.samples_used, first_only.samples_used);
+  EXPECT_EQ(every.paths_used, static_cast<int>(paths.size()));
+  EXPECT_LT(every.std[0], first_only.std[0]);
+  const double rho = plant::true_rolling_resistance(field, plant);
+  EXPECT_NEAR(every.rolling_resistance, rho, 3.0 * every.std[0] + 0.01 * rho);
+}
+
 }  // namespace
 }  // namespace mg::belief
