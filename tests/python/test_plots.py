@@ -3,7 +3,9 @@ the expected shape from small synthetic CSVs; bad inputs give one 'plot: error:'
 
 Run: /usr/bin/python3 -m pytest -q tests/python/test_plots.py
 """
+import contextlib
 import csv
+import io
 import json
 import math
 import os
@@ -18,10 +20,13 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 PLOT = os.path.join(ROOT, "scripts", "plots", "plot.py")
 PYTHON = sys.executable
+sys.path.insert(0, os.path.dirname(PLOT))
+from minigolf_plots.cli import main as plot_main  # noqa: E402
 
 
 def write_csv(path, header, rows):
@@ -32,10 +37,25 @@ def write_csv(path, header, rows):
     return str(path)
 
 
-def run(*args, script=PLOT):
+def run_program(*args, script=PLOT):
     env = dict(os.environ, MPLBACKEND="Agg")
     return subprocess.run([PYTHON, script, *map(str, args)], capture_output=True, text=True,
                           env=env, timeout=120)
+
+
+def run(*args, script=PLOT):
+    """plot.py's main() in this process (a fresh Python and matplotlib per call cost the suite
+    minutes); other scripts, and plot.py as a program (test_plot_runs_as_a_program), run apart."""
+    if script != PLOT:
+        return run_program(*args, script=script)
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = plot_main([str(a) for a in args])
+        except SystemExit as e:  # argparse's usage errors
+            code = e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
+    plt.close("all")
+    return subprocess.CompletedProcess(args, code, out.getvalue(), err.getvalue())
 
 
 def assert_png(result, path, ratio, tol=0.06):
@@ -522,3 +542,10 @@ def test_fuzzed_sweep_csvs_are_drawn_or_refused_in_one_line(tmp_path, sweep_csv)
             assert not out.exists()
         else:
             assert out.stat().st_size > 0
+
+
+def test_plot_runs_as_a_program(tmp_path, sweep_csv):
+    """plot.py itself: a figure, and a bad input's one line and exit 2, from a separate Python."""
+    out = tmp_path / "sweep.png"
+    assert_png(run_program("sweep", sweep_csv, out), out, 8 / 5.5)
+    assert_error(run_program("sweep", tmp_path / "missing.csv", out), "missing.csv")
