@@ -25,7 +25,8 @@ if grep -rIl -e "$source/src" -e "$build" "$prefix/include" "$prefix/lib/cmake" 
   fail "installed files name the source or build tree: $(grep -rIl -e "$source/src" -e "$build" \
     "$prefix/include" "$prefix/lib/cmake" | head -3 | tr '\n' ' ')"
 fi
-subsystems='core|field|plant|sim|robot|stats|learning|ds|perception|control|system|teacher'
+subsystems='core|field|plant|sim|robot|stats|learning|ds|perception|control|sim_backend|system'
+subsystems+='|teacher'
 subsystems+='|selfteach|experiments|game|viz'
 if grep -rhE "#include \"($subsystems)/" "$prefix/include" >/dev/null; then
   fail "an installed header includes a subsystem header without the minigolf/ prefix"
