@@ -113,9 +113,8 @@ int run(const std::string& hitting_file) {
 
 int main(int argc, char** argv) {
   try {
-    const std::string hitting = argc > 1 ? argv[1]
-                                         : (mg::data_dir() / "models" / "hitting-default.json")
-                                               .string();
+    const std::string hitting =
+        argc > 1 ? argv[1] : (mg::data_dir() / "models" / "hitting-default.json").string();
     return run(hitting);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "module_ticks: error: %s\n", e.what());

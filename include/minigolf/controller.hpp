@@ -9,6 +9,7 @@
 #include "control/console_command.hpp"
 #include "control/minigolf_module.hpp"
 #include "control/module_config.hpp"
+#include "control/module_stages.hpp"
 #include "control/module_state.hpp"
 #include "control/recorder.hpp"
 #include "core/io.hpp"
