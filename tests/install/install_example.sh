@@ -22,7 +22,7 @@ for f in lib/cmake/minigolf/minigolfConfig.cmake lib/cmake/minigolf/minigolfConf
 done
 ls "$prefix"/lib/libmg_*.a >/dev/null 2>&1 || fail "no libraries in $prefix/lib"
 # Only the API: headers internal to their library (no entry header reaches them) stay out.
-for f in sim_backend/full_system_parts.hpp field/map_reader.hpp system/wire.hpp \
+for f in sim_backend/full_system_parts.hpp field/map_reader.hpp \
          experiments/wire.hpp ds/seds_layout.hpp; do
   [[ ! -e $prefix/include/minigolf/$f ]] || fail "an internal header was installed: $f"
 done
