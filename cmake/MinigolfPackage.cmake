@@ -5,9 +5,14 @@
 # minigolf::minigolf. Included by the top-level CMakeLists.txt after every library is defined.
 include(CMakePackageConfigHelpers)
 
-# Every library of the public API, in the order of their layers (ARCHITECTURE.md).
-set(MINIGOLF_SUBSYSTEMS core field plant sim belief robot stats learning ds perception control system
-    teacher selfteach experiments game viz)
+# Every library of the public API, in the order of their layers (docs/architecture.md).
+set(MINIGOLF_SUBSYSTEMS core field plant sim belief robot stats learning ds perception control
+    sim_backend system teacher selfteach experiments game viz)
+# The controller and what it links: no MuJoCo, GLFW or simulator among them. They are their own
+# export set, so that a program that drives another arm can find_package(minigolf COMPONENTS
+# controller) without MuJoCo installed. The module's library (src/control) is exported under the
+# name of that closure, minigolf::controller.
+set(MINIGOLF_CONTROLLER_PARTS core field robot stats ds perception control)
 
 # minigolf::minigolf: all of them, and the entry headers of include/minigolf/.
 add_library(mg_minigolf INTERFACE)
@@ -16,13 +21,27 @@ target_include_directories(mg_minigolf INTERFACE
   $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>)
 set_target_properties(mg_minigolf PROPERTIES EXPORT_NAME minigolf)
 set(_mg_targets mg_minigolf)
+set(_mg_controller_targets)
 foreach(sub IN LISTS MINIGOLF_SUBSYSTEMS)
-  set_target_properties(mg_${sub} PROPERTIES EXPORT_NAME ${sub})
+  if(sub STREQUAL "control")
+    set_target_properties(mg_${sub} PROPERTIES EXPORT_NAME controller)
+  else()
+    set_target_properties(mg_${sub} PROPERTIES EXPORT_NAME ${sub})
+  endif()
   target_link_libraries(mg_minigolf INTERFACE mg_${sub})
-  list(APPEND _mg_targets mg_${sub})
+  if(sub IN_LIST MINIGOLF_CONTROLLER_PARTS)
+    list(APPEND _mg_controller_targets mg_${sub})
+  else()
+    list(APPEND _mg_targets mg_${sub})
+  endif()
 endforeach()
 
 set(MINIGOLF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/minigolf)
+install(TARGETS ${_mg_controller_targets} EXPORT minigolfControllerTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT minigolfControllerTargets NAMESPACE minigolf:: DESTINATION ${MINIGOLF_CMAKE_DIR})
 install(TARGETS ${_mg_targets} EXPORT minigolfTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -5,12 +5,12 @@
 
 #include <string>
 
-#include "control/full_system.hpp"
 #include "control/minigolf_module.hpp"
-#include "control/mujoco_arm.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
 #include "robot/wam_model.hpp"
+#include "sim_backend/full_system.hpp"
+#include "sim_backend/mujoco_arm.hpp"
 
 namespace {
 

@@ -16,10 +16,10 @@
 
 #include <benchmark/benchmark.h>
 
-#include "control/full_system.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
 #include "sim/putt.hpp"
+#include "sim_backend/full_system.hpp"
 
 namespace {
 

@@ -7,9 +7,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "control/full_system.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
+#include "sim_backend/full_system.hpp"
 
 int main(int argc, char** argv) {
   using namespace mg;

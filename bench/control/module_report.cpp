@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "control/full_system.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
+#include "sim_backend/full_system.hpp"
 
 using namespace mg;
 

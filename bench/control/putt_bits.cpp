@@ -11,10 +11,10 @@
 #include <cstring>
 #include <string>
 
-#include "control/full_system.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
 #include "robot/wam_model.hpp"
+#include "sim_backend/full_system.hpp"
 
 namespace {
 

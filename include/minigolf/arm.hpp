@@ -4,9 +4,9 @@
 /// (mg::control::MeasuredState in, mg::control::ModuleCommand out; MuJoCo is one backend,
 /// mg::control::MujocoArm).
 #include "control/arm_interface.hpp"
-#include "control/mujoco_arm.hpp"
 #include "robot/arm_model.hpp"
 #include "robot/dynamics.hpp"
 #include "robot/ik.hpp"
 #include "robot/kinematics.hpp"
 #include "robot/wam_model.hpp"
+#include "sim_backend/mujoco_arm.hpp"

@@ -5,7 +5,6 @@
 ///
 ///   mg::control::ModuleConfig config = mg::system::load_config("", "flat");
 ///   mg::ds::HittingModel model = mg::ds::read_hitting_model(config.hitting_model);
-#include "control/full_system.hpp"
 #include "control/minigolf_module.hpp"
 #include "control/module_config.hpp"
 #include "control/module_state.hpp"
@@ -14,3 +13,4 @@
 #include "ds/hitting_model.hpp"
 #include "ds/seds.hpp"
 #include "perception/perception.hpp"
+#include "sim_backend/full_system.hpp"

@@ -1,6 +1,6 @@
 // putt --field F --hole X,Y --angle RAD --speed M/S [--ball X,Y [--aim RAD]] [--ball-only]
 //      [--hitting-model FILE] [--config FILE] [--plant FILE] [--json] [--trajectory FILE]
-// Without --ball-only the simulated WAM hits the ball (control/full_system.hpp); --angle and
+// Without --ball-only the simulated WAM hits the ball (sim_backend/full_system.hpp); --angle and
 // --speed are then the hitting angle (in the frame of the base, which stands beside the ball
 // facing --aim: system::stance_for) and the club speed at the ball. The putt and its JSON are
 // system::putt's and system::putt_json's, as Python's System.putt.

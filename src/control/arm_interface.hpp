@@ -7,7 +7,7 @@
 ///   backend.write(c);                            // the driver: joint torques to the motors
 ///
 /// The module sees only what a real system measures: joint positions and velocities, the sample
-/// time and what perception reports. The simulator is one backend (control/mujoco_arm.hpp); a
+/// time and what perception reports. The simulator is one backend (sim_backend/mujoco_arm.hpp); a
 /// driver for the real WAM is another (docs/hardware.md says what it must do). Both `read` and
 /// `write` run inside the real-time tick: no allocation, no throw, bounded time.
 #include <optional>

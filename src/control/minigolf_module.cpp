@@ -1,6 +1,8 @@
 // The module's robot and core updates (real-time: no allocation, no throw).
 #include "control/minigolf_module.hpp"
 
+#include "control/module_stages.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -120,18 +122,26 @@ bool ball_in_place(const ModuleModel& model, const ModuleData& data) {
          model.config().ball_tolerance;
 }
 
-ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
-                            const MeasuredState& measured) noexcept {
+namespace {
+
+bool measurable(const MeasuredState& m) { return finite(m.q) && finite(m.qd); }
+
+double max_joint_speed(const Vector7& qd) {
+  double qd_max = 0.0;
+  for (int j = 0; j < 7; ++j) qd_max = std::max(qd_max, std::abs(qd[j]));
+  return qd_max;
+}
+
+}  // namespace
+
+Observation observe(const ModuleModel& model, ModuleData& data,
+                    const MeasuredState& measured) noexcept {
   const auto& c = model.config();
   const auto& arm = model.arm();
-  const double dt = c.core_period();
-  TickInfo info;
-
   const Vector7& q = measured.q;
   const Vector7& qd = measured.qd;
   if (measured.perception) robot_update(model, data, *measured.perception);
 
-  // ---- observation ----
   Observation obs;
   obs.command = data.pending;
   data.pending = Command::kNone;
@@ -151,8 +161,7 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
   // Lost ball: no fresh perception while the club is on its way to the ball.
   if (data.state == ModuleState::kHitting && !data.ball_hit && !obs.perception_fresh) fault = true;
   obs.fault = fault;
-  double qd_max = 0.0;
-  for (int j = 0; j < 7; ++j) qd_max = std::max(qd_max, std::abs(qd[j]));
+  const double qd_max = max_joint_speed(qd);
   obs.joints_stationary =
       finite(qd) && qd_max < c.stationary_threshold && data.time_in_state >= c.brake_time;
   obs.at_rest_pose =
@@ -177,10 +186,12 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
     const Eigen::Vector3d psi = direction_of(data.angle);
     obs.passed_ball = (data.p_ref - model.hitting().x_star()).dot(psi) > c.passed_distance;
   }
+  return obs;
+}
 
-  const Transition tr = next_state(data.state, obs);
-  info.reason = tr.reason;
-  info.fault = fault;
+Reason transition(const ModuleModel& model, ModuleData& data, const Observation& observation,
+                  const Vector7& q) noexcept {
+  const Transition tr = next_state(data.state, observation);
   if (tr.next != data.state) {
     enter_state(model, data, tr.next);
     data.state = tr.next;
@@ -189,77 +200,102 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
   if (data.state == ModuleState::kIdle || !finite(data.q_ref)) {
     data.q_ref = finite(q) ? q : Vector7::Zero();
   }
+  return tr.reason;
+}
 
-  // ---- desired joint motion ----
+robot::FaceTarget reference(const ModuleModel& model, ModuleData& data,
+                            const MeasuredState& measured) noexcept {
+  const auto& c = model.config();
+  const auto& arm = model.arm();
+  const double dt = c.core_period();
+  robot::FaceTarget target;
+  if (data.state == ModuleState::kRest) {
+    const Eigen::Vector3d goal = rest_face_position(model, data.angle);
+    data.setpoint = approach(data.setpoint, goal, model.rest_speed() * dt);
+    const double dh = wrap_angle(data.angle - data.setpoint_heading);
+    const double turn = model.rest_turn_rate() * dt;
+    data.setpoint_heading += std::clamp(dh, -turn, turn);
+    target.position = data.setpoint;
+    target.heading = data.setpoint_heading;
+    const Eigen::Isometry3d face = robot::dh_club_pose(arm, measured.q);
+    const double heading = std::atan2(face.linear()(1, 0), face.linear()(0, 0));
+    data.at_rest_pose = (face.translation() - goal).norm() < c.rest_tolerance &&
+                        std::abs(wrap_angle(heading - data.angle)) < c.rest_heading_tolerance &&
+                        (data.setpoint - goal).norm() < kEps &&
+                        max_joint_speed(measured.qd) < c.stationary_threshold;
+  } else if (data.state == ModuleState::kHitting) {
+    // The DS is evaluated at the reference face (FK of q_ref), not at an integrated point: when
+    // a joint saturates, the club just gets there later instead of a set-point running away.
+    const Eigen::Vector3d psi = direction_of(data.angle);
+    const Eigen::Vector3d face_ref = robot::dh_club_pose(arm, data.q_ref).translation();
+    const Eigen::Vector3d p_kin = face_ref + c.club_face_offset * psi;
+    // The DS point is integrated (a smooth reference) but kept on a leash to the kinematic
+    // reference: when a joint saturates the club gets there later instead of the set-point
+    // running away.
+    const Eigen::Vector3d lead = data.p_ref - p_kin;
+    if (lead.norm() > c.reference_leash)
+      data.p_ref = p_kin + lead * (c.reference_leash / lead.norm());
+    // Smoothstep ramp-in: the DS asks for full speed at once, the arm starts from rest.
+    const double u = std::min(1.0, data.time_in_state / c.hit_ramp_time);
+    const Eigen::Vector3d v_ref = data.v_ds * (u * u * (3.0 - 2.0 * u));
+    data.v_ref = v_ref;
+    data.p_ref += v_ref * dt;
+    target.position = data.p_ref - c.club_face_offset * psi;
+    target.heading = data.angle;
+    target.velocity.head<3>() = v_ref;
+  } else if (data.state == ModuleState::kBraking) {
+    // The face velocity ramps to zero while the club is lifted.
+    const double t = data.time_in_state;
+    const double s = std::max(0.0, 1.0 - t / c.brake_time);
+    Eigen::Vector3d v = data.v_brake0 * s;
+    if (t < c.brake_time)
+      v.z() +=
+          c.brake_lift_height * (M_PI / (2.0 * c.brake_time)) * std::sin(M_PI * t / c.brake_time);
+    data.setpoint += v * dt;
+    target.position = data.setpoint;
+    target.heading = data.setpoint_heading;
+    target.velocity.head<3>() = v;
+  }
+  return target;
+}
+
+robot::RtStatus track(const ModuleModel& model, ModuleData& data,
+                      const robot::FaceTarget& target) noexcept {
+  const double dt = model.config().core_period();
+  Vector7 qd_ik;
+  const robot::RtStatus status =
+      robot::track_face(model.arm(), data.q_ref, target, model.posture(), model.ik(), qd_ik);
+  if (status == robot::RtStatus::kInvalidInput) qd_ik.setZero();
+  const Vector7 qd_prev = data.qd_des;
+  data.qd_des = fir_step(data.fir, qd_ik);
+  data.qdd_des = (data.qd_des - qd_prev) / dt;
+  data.q_ref += data.qd_des * dt;
+  return status;
+}
+
+void hold(const ModuleModel& model, ModuleData& data, const MeasuredState& measured) noexcept {
+  if (measurable(measured) && data.state == ModuleState::kIdle) {
+    fir_reset(data.fir, model.config().fir_length, Vector7::Zero());
+    data.integral.setZero();
+  }
+  data.qd_des.setZero();
+  data.qdd_des.setZero();
+}
+
+TorqueOutput torque(const ModuleModel& model, ModuleData& data,
+                    const MeasuredState& measured) noexcept {
+  const auto& c = model.config();
+  const auto& arm = model.arm();
+  const double dt = c.core_period();
+  const Vector7& q = measured.q;
+  const Vector7& qd = measured.qd;
+  TorqueOutput out;
   Vector7 tau = Vector7::Zero();
-  if (!finite(q) || !finite(qd)) {
+  if (!measurable(measured)) {
     // Nothing to compute torques from: zero torque (the plant's brakes would engage).
-    data.qd_des.setZero();
-    data.qdd_des.setZero();
   } else if (data.state == ModuleState::kIdle) {
     if (robot::gravity_torque(arm, q, tau) != robot::RtStatus::kOk) tau.setZero();
-    fir_reset(data.fir, c.fir_length, Vector7::Zero());
-    data.qd_des.setZero();
-    data.qdd_des.setZero();
-    data.integral.setZero();
   } else {
-    robot::FaceTarget target;
-    if (data.state == ModuleState::kRest) {
-      const Eigen::Vector3d goal = rest_face_position(model, data.angle);
-      data.setpoint = approach(data.setpoint, goal, model.rest_speed() * dt);
-      const double dh = wrap_angle(data.angle - data.setpoint_heading);
-      const double turn = model.rest_turn_rate() * dt;
-      data.setpoint_heading += std::clamp(dh, -turn, turn);
-      target.position = data.setpoint;
-      target.heading = data.setpoint_heading;
-      const Eigen::Isometry3d face = robot::dh_club_pose(arm, q);
-      const double heading = std::atan2(face.linear()(1, 0), face.linear()(0, 0));
-      data.at_rest_pose = (face.translation() - goal).norm() < c.rest_tolerance &&
-                          std::abs(wrap_angle(heading - data.angle)) < c.rest_heading_tolerance &&
-                          (data.setpoint - goal).norm() < kEps && qd_max < c.stationary_threshold;
-    } else if (data.state == ModuleState::kHitting) {
-      // The DS is evaluated at the reference face (FK of q_ref), not at an integrated point: when
-      // a joint saturates, the club just gets there later instead of a set-point running away.
-      const Eigen::Vector3d psi = direction_of(data.angle);
-      const Eigen::Vector3d face_ref = robot::dh_club_pose(arm, data.q_ref).translation();
-      const Eigen::Vector3d p_kin = face_ref + c.club_face_offset * psi;
-      // The DS point is integrated (a smooth reference) but kept on a leash to the kinematic
-      // reference: when a joint saturates the club gets there later instead of the set-point
-      // running away.
-      const Eigen::Vector3d lead = data.p_ref - p_kin;
-      if (lead.norm() > c.reference_leash)
-        data.p_ref = p_kin + lead * (c.reference_leash / lead.norm());
-      // Smoothstep ramp-in: the DS asks for full speed at once, the arm starts from rest.
-      const double u = std::min(1.0, data.time_in_state / c.hit_ramp_time);
-      const Eigen::Vector3d v_ref = data.v_ds * (u * u * (3.0 - 2.0 * u));
-      data.v_ref = v_ref;
-      data.p_ref += v_ref * dt;
-      target.position = data.p_ref - c.club_face_offset * psi;
-      target.heading = data.angle;
-      target.velocity.head<3>() = v_ref;
-    } else {  // Braking: the face velocity ramps to zero while the club is lifted
-      const double t = data.time_in_state;
-      const double s = std::max(0.0, 1.0 - t / c.brake_time);
-      Eigen::Vector3d v = data.v_brake0 * s;
-      if (t < c.brake_time)
-        v.z() +=
-            c.brake_lift_height * (M_PI / (2.0 * c.brake_time)) * std::sin(M_PI * t / c.brake_time);
-      data.setpoint += v * dt;
-      target.position = data.setpoint;
-      target.heading = data.setpoint_heading;
-      target.velocity.head<3>() = v;
-    }
-    Vector7 qd_ik;
-    info.ik_status = robot::track_face(arm, data.q_ref, target, model.posture(), model.ik(), qd_ik);
-    if (info.ik_status == robot::RtStatus::kInvalidInput) {
-      qd_ik.setZero();
-      if (data.state != ModuleState::kBraking) fault = true;  // brakes on the next tick
-    }
-    const Vector7 qd_prev = data.qd_des;
-    data.qd_des = fir_step(data.fir, qd_ik);
-    data.qdd_des = (data.qd_des - qd_prev) / dt;
-    data.q_ref += data.qd_des * dt;
-
     // Computed-torque PID: gains in acceleration units, multiplied by M(q) through the RNEA.
     const Vector7 e = data.q_ref - q;
     Vector7 a = data.qdd_des;
@@ -270,28 +306,48 @@ ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
       a[j] += c.kp[i] * e[j] + c.ki[i] * data.integral[j] + c.kd[i] * (data.qd_des[j] - qd[j]);
     }
     if (robot::inverse_dynamics(arm, q, qd, a, tau) != robot::RtStatus::kOk) {
-      fault = true;
+      out.failed = true;
       if (robot::gravity_torque(arm, q, tau) != robot::RtStatus::kOk) tau.setZero();
     }
   }
-
   data.tau_raw = tau;
   for (int j = 0; j < 7; ++j) {
     const double lim = arm.torque_limit()[j];
     if (!std::isfinite(tau[j])) tau[j] = 0.0;
-    if (std::abs(tau[j]) > lim) info.torque_clamped = true;
+    if (std::abs(tau[j]) > lim) out.clamped = true;
     tau[j] = std::clamp(tau[j], -lim, lim);
   }
   data.tau = tau;
+  out.tau = tau;
+  return out;
+}
+
+ModuleCommand module_update(const ModuleModel& model, ModuleData& data,
+                            const MeasuredState& measured) noexcept {
+  TickInfo info;
+  const Observation obs = observe(model, data, measured);
+  bool fault = obs.fault;
+  info.reason = transition(model, data, obs, measured.q);
+  if (measurable(measured) && data.state != ModuleState::kIdle) {
+    info.ik_status = track(model, data, reference(model, data, measured));
+    // A failed IK brakes on the next tick (braking itself goes on with a zero IK velocity).
+    if (info.ik_status == robot::RtStatus::kInvalidInput && data.state != ModuleState::kBraking)
+      fault = true;
+  } else {
+    hold(model, data, measured);
+  }
+  const TorqueOutput out = torque(model, data, measured);
+  if (out.failed) fault = true;
+  info.torque_clamped = out.clamped;
   info.fault = fault;
   info.hit = data.hit_evidence;
   data.last = info;
   // A fault found while computing (IK/RNEA) is reported in the next tick's observation.
   data.compute_fault = fault && !obs.fault;
-  data.time_in_state += dt;
+  data.time_in_state += model.config().core_period();
   ++data.tick;
   ModuleCommand command;
-  command.tau = tau;
+  command.tau = out.tau;
   command.state = data.state;
   command.status = info;
   return command;

@@ -7,10 +7,10 @@
 ///
 /// The core tick is read -> update -> write (control/arm_interface.hpp): `module_update` takes the
 /// measured joint state and returns joint torques and a status; an ArmBackend (the simulator,
-/// control/mujoco_arm.hpp; a fake in tests; a driver for the real WAM, docs/hardware.md) does
+/// sim_backend/mujoco_arm.hpp; a fake in tests; a driver for the real WAM, docs/hardware.md) does
 /// the read and the write, `control_tick` does all three. Nothing here knows the simulator: no
-/// MuJoCo header, id or mjData (the adapter, control/mujoco_arm.hpp, builds the model from a
-/// simulation and resets the module from one). The one scheduler, control/core_loop.hpp, calls
+/// MuJoCo header, id or mjData (the adapter, sim_backend/mujoco_arm.hpp, builds the model from a
+/// simulation and resets the module from one). The one scheduler, sim_backend/core_loop.hpp, calls
 /// `robot_update` every `robot_update_divider`-th core tick with the perception of that moment,
 /// then the core tick; the module code is the same for putts, the console and the viewer.
 ///
@@ -65,7 +65,7 @@ robot::Vector7 fir_step(FirFilter& f, const robot::Vector7& input);
 class ModuleModel {
  public:
   /// The arm, the hitting model, the config and the ball's radius [m] (hit detection); in the
-  /// simulator control::make_module_model (control/mujoco_arm.hpp) reads the arm and the radius
+  /// simulator control::make_module_model (sim_backend/mujoco_arm.hpp) reads the arm and the radius
   /// from the compiled world. Validates; throws mg::InputError.
   ModuleModel(robot::ArmModel arm, ds::HittingModel hitting, const ControllerConfig& config,
               double ball_radius);
@@ -137,7 +137,7 @@ class ModuleData {
   bool compute_fault = false;       ///< IK/RNEA failed last tick: reported as a fault this tick
   /// Set by a real-time scheduler after an overrun streak; a fault until the module is reset.
   bool overrun_fault = false;
-  /// Set by the core loop when a hook threw (control/core_loop.hpp); a fault until reset.
+  /// Set by the core loop when a hook threw (sim_backend/core_loop.hpp); a fault until reset.
   bool hook_fault = false;
   perception::Perceived seen;   ///< last perception handed to the robot update
   std::int64_t seen_tick = -1;  ///< core tick of the last fresh perception (-1: never)
@@ -145,7 +145,7 @@ class ModuleData {
 };
 
 /// Resets the data to Idle with the reference at the measured joint positions `q` [rad] (in a
-/// simulation: control::module_reset of control/mujoco_arm.hpp).
+/// simulation: control::module_reset of sim_backend/mujoco_arm.hpp).
 void module_reset(const ModuleModel& model, ModuleData& data, const robot::Vector7& q);
 
 /// User update (not real-time): ask for the rest pose for hitting angle `angle` [rad].

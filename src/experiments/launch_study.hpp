@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "control/full_system.hpp"
+#include "sim_backend/full_system.hpp"
 #include "system/system.hpp"
 
 namespace mg::experiments {

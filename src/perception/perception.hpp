@@ -5,17 +5,12 @@
 /// Both sources answer `perceive(now)` the same way, never throw, and say whether the answer is
 /// fresh enough to act on; the control module decides what to do with a stale answer (hold,
 /// never hit). No simulator here: the simulator's ground truth is
-/// perception/simulator_perception.hpp.
+/// sim_backend/simulator_perception.hpp.
 #include <array>
 #include <limits>
 
 #include "perception/vision_feed.hpp"
 #include "robot/wam_model.hpp"
-
-struct mjData_;
-namespace mg::sim {
-class World;
-}
 
 namespace mg::perception {
 
@@ -33,17 +28,6 @@ class Perception {
   virtual ~Perception() = default;
   /// The current ball and hole at `now` [s, caller's monotonic clock]. Never throws.
   virtual Perceived perceive(double now) noexcept = 0;
-};
-
-/// Makes the perception a full-system putt's module reads from the simulation it runs, in place
-/// of the simulator's truth (control::FullPuttOptions::perception_source): the cameras of
-/// vision/camera_perception.hpp render `world` in the state `d`. Called once per putt after the
-/// ball is placed; the perception returned stays valid until the next call. Not thread-safe:
-/// one source per thread.
-class PerceptionSource {
- public:
-  virtual ~PerceptionSource() = default;
-  virtual Perception& attach(const sim::World& world, const mjData_* d) = 0;
 };
 
 /// A source as a plant's vision really is (plant/plant.hpp): what `source` perceived `latency`

@@ -1,7 +1,7 @@
 #pragma once
 /// The immutable arm description used by kinematics, dynamics and IK (the DH route). No
 /// simulator: a model built from a compiled MuJoCo model, the MuJoCo addresses of the arm and the
-/// functions that read a simulation are in robot/arm_mujoco.hpp.
+/// functions that read a simulation are in sim_backend/arm_mujoco.hpp.
 #include <array>
 
 #include "robot/kinematics.hpp"

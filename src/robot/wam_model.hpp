@@ -1,17 +1,11 @@
 #pragma once
-/// The WAM + golf club as MJCF, generated from the published tables in wam_params.hpp.
+/// Where the WAM stands and what it holds: the mount (base pose, club, joint friction of a plant)
+/// and a mobile base's stance, with the published tables of wam_params.hpp. No simulator: the
+/// arm as MJCF for MuJoCo is sim_backend/wam_mjcf.hpp.
 ///
-/// Body frames of `wam_link1..7` coincide with the DH link frames 1..7, so COMs and inertia
-/// tensors are written as tabulated, in the DH link frames (the tensor as principal moments and
-/// axes computed in double precision, see wam_model.cpp for why not `fullinertia`). Joint i turns
-/// about z of frame i-1; in body i that axis and point are R_x(alpha_i)^T z and -R_x(alpha_i)^T
-/// (a_i, 0, d_i).
-///
-/// Names: joints `wam_j1..7`, bodies `wam_base`, `wam_link1..7`, `wam_club`, actuators `wam_m1..7`,
-/// site `club_face`, geom `club_head` (the only colliding geom: contype 4, conaffinity 0).
-/// The generated XML uses radians: the enclosing model needs `<compiler angle="radian"/>`.
+/// Frames: the world has the ball tee at (0, 0), +x the default hitting direction, z up. The
+/// WAM's DH frames 0..7 follow wam_params.hpp; frame 0 (the shoulder) sits on the base plate.
 #include <array>
-#include <string>
 
 #include "robot/wam_params.hpp"
 
@@ -65,15 +59,5 @@ WamMount mount_at(const WamMount& local, const Stance& stance);
 /// the whole hitting region (notes/robot.md). Also a good IK start and null-space posture.
 inline constexpr std::array<double, kNumJoints> kDefaultRestPosture{0.0413,  0.8483, 0.1533, 2.4368,
                                                                     -2.8162, 0.5102, -0.1911};
-
-/// `<body>` XML for the arm (base, links, club) to insert into a `<worldbody>`.
-std::string wam_bodies_mjcf(const WamMount& mount);
-
-/// The children of an `<actuator>` element: torque motors `wam_m1..7`, gear 1, ctrlrange =
-/// kTorqueLimit.
-std::string wam_actuators_mjcf();
-
-/// A complete model: the arm alone (no ground), gravity on, 1 ms Euler steps.
-std::string wam_standalone_mjcf(const WamMount& mount);
 
 }  // namespace mg::robot

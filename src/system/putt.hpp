@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "control/full_system.hpp"
 #include "sim/putt.hpp"
+#include "sim_backend/full_system.hpp"
 #include "system/system.hpp"
 
 namespace mg::system {

@@ -1,8 +1,8 @@
 #pragma once
 /// A running minigolf system behind `minigolf console` and `minigolf view`: the field's world
 /// with the WAM, the module, its perception (simulator truth, or the network vision feed in normal
-/// mode), a parameter model for `auto`, a recorder, on the one core loop (control/core_loop.hpp)
-/// under one of two schedulers:
+/// mode), a parameter model for `auto`, a recorder, on the one core loop
+/// (sim_backend/core_loop.hpp) under one of two schedulers:
 ///
 ///   lockstep (default)  one thread; `wait S` runs S simulated seconds as fast as possible.
 ///                       Deterministic: the same script gives the same bits, and the same bits
@@ -35,7 +35,6 @@
 #include <vector>
 
 #include "control/console_command.hpp"
-#include "control/core_loop.hpp"
 #include "control/minigolf_module.hpp"
 #include "control/module_config.hpp"
 #include "control/recorder.hpp"
@@ -45,6 +44,7 @@
 #include "perception/vision_publisher.hpp"
 #include "sim/putt.hpp"
 #include "sim/world.hpp"
+#include "sim_backend/core_loop.hpp"
 #include "system/system.hpp"
 
 namespace mg::system {

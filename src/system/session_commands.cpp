@@ -7,10 +7,10 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "control/full_system.hpp"
 #include "core/error.hpp"
 #include "ds/hitting_model.hpp"
 #include "field/field.hpp"
+#include "sim_backend/full_system.hpp"
 #include "system/session.hpp"
 #include "system/session_core.hpp"
 

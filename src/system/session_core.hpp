@@ -1,7 +1,7 @@
 #pragma once
 /// The core side of a console session (system/session.hpp): everything the core thread owns, the
-/// core loop (control/core_loop.hpp) with the session's hooks, and the lock-free channels between
-/// it and the rest of the session (ros2_control's real-time buffers):
+/// core loop (sim_backend/core_loop.hpp) with the session's hooks, and the lock-free channels
+/// between it and the rest of the session (ros2_control's real-time buffers):
 ///
 ///   user thread  --commands (SPSC queue)-->  core  --events, replies (SPSC queue)-->  printer
 ///                                            core  --record samples (SPSC ring)----> recorder
@@ -18,7 +18,6 @@
 #include <optional>
 #include <vector>
 
-#include "control/core_loop.hpp"
 #include "control/module_config.hpp"
 #include "control/recorder.hpp"
 #include "core/spsc_queue.hpp"
@@ -26,6 +25,7 @@
 #include "perception/perception.hpp"
 #include "sim/putt.hpp"
 #include "sim/world.hpp"
+#include "sim_backend/core_loop.hpp"
 #include "system/session.hpp"
 
 namespace mg::system {

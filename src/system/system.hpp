@@ -12,12 +12,12 @@
 #include <string_view>
 #include <vector>
 
-#include "control/full_system.hpp"
 #include "control/module_config.hpp"
 #include "field/field.hpp"
 #include "plant/plant.hpp"
 #include "sim/putt.hpp"
 #include "sim/world.hpp"
+#include "sim_backend/full_system.hpp"
 
 namespace mg::system {
 

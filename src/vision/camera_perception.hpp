@@ -12,7 +12,7 @@
 #include <memory>
 #include <optional>
 
-#include "perception/perception.hpp"
+#include "sim_backend/simulator_perception.hpp"
 #include "vision/rig_renderer.hpp"
 #include "vision/stereo_pipeline.hpp"
 

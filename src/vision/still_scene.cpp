@@ -4,8 +4,8 @@
 #include <cmath>
 #include <ctime>
 
-#include "robot/arm_mujoco.hpp"
 #include "robot/wam_model.hpp"
+#include "sim_backend/arm_mujoco.hpp"
 
 namespace mg::vision {
 

@@ -5,7 +5,8 @@
 #include "control/minigolf_module.hpp"
 
 #ifdef mjVERSION_HEADER
-#error "the controller's headers include mujoco.h: the simulator belongs to control/mujoco_arm.hpp"
+#error \
+    "the controller's headers include mujoco.h: the simulator belongs to sim_backend/mujoco_arm.hpp"
 #endif
 
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // The one core loop: its tick (read -> robot update on the divider -> module update -> write ->
 // physics steps with hooks), its timing histogram, and a hook's exception as a fault.
-#include "control/core_loop.hpp"
+#include "sim_backend/core_loop.hpp"
 
 #include <algorithm>
 #include <random>
@@ -10,10 +10,10 @@
 
 #include <gtest/gtest.h>
 
-#include "control/full_system.hpp"
-#include "control/mujoco_arm.hpp"
 #include "field/field.hpp"
 #include "robot/wam_model.hpp"
+#include "sim_backend/full_system.hpp"
+#include "sim_backend/mujoco_arm.hpp"
 
 namespace mg::testing {
 long allocations();  // test_minigolf_module.cpp counts operator new

@@ -1,5 +1,5 @@
 // The module in lockstep simulator mode on the flat field: the arm hits the ball.
-#include "control/full_system.hpp"
+#include "sim_backend/full_system.hpp"
 
 #include <cmath>
 #include <cstdio>

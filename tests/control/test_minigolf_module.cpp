@@ -10,10 +10,10 @@
 
 #include <gtest/gtest.h>
 
-#include "control/full_system.hpp"
-#include "control/mujoco_arm.hpp"
 #include "field/field.hpp"
-#include "perception/simulator_perception.hpp"
+#include "sim_backend/full_system.hpp"
+#include "sim_backend/mujoco_arm.hpp"
+#include "sim_backend/simulator_perception.hpp"
 
 // Counts heap allocations so the real-time claim of the core tick is tested, not assumed.
 // GCC cannot see that these replacements pair malloc with free.

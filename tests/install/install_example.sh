@@ -21,11 +21,17 @@ for f in lib/cmake/minigolf/minigolfConfig.cmake lib/cmake/minigolf/minigolfConf
   [[ -e $prefix/$f ]] || fail "not installed: $f"
 done
 ls "$prefix"/lib/libmg_*.a >/dev/null 2>&1 || fail "no libraries in $prefix/lib"
+# Only the API: headers internal to their library (no entry header reaches them) stay out.
+for f in sim_backend/full_system_parts.hpp field/map_reader.hpp \
+         experiments/wire.hpp ds/seds_layout.hpp; do
+  [[ ! -e $prefix/include/minigolf/$f ]] || fail "an internal header was installed: $f"
+done
 if grep -rIl -e "$source/src" -e "$build" "$prefix/include" "$prefix/lib/cmake" >/dev/null; then
   fail "installed files name the source or build tree: $(grep -rIl -e "$source/src" -e "$build" \
     "$prefix/include" "$prefix/lib/cmake" | head -3 | tr '\n' ' ')"
 fi
-subsystems='core|field|plant|sim|robot|stats|learning|ds|perception|control|system|teacher'
+subsystems='core|field|plant|sim|robot|stats|learning|ds|perception|control|sim_backend|system'
+subsystems+='|teacher'
 subsystems+='|selfteach|experiments|game|viz'
 if grep -rhE "#include \"($subsystems)/" "$prefix/include" >/dev/null; then
   fail "an installed header includes a subsystem header without the minigolf/ prefix"

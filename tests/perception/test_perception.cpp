@@ -4,8 +4,8 @@
 
 #include "field/field.hpp"
 #include "perception/perception.hpp"
-#include "perception/simulator_perception.hpp"
 #include "sim/world.hpp"
+#include "sim_backend/simulator_perception.hpp"
 
 namespace mg::perception {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "core/rng.hpp"
 #include "robot/arm_model.hpp"
-#include "robot/arm_mujoco.hpp"
-#include "robot/wam_model.hpp"
+#include "sim_backend/arm_mujoco.hpp"
+#include "sim_backend/wam_mjcf.hpp"
 
 namespace mg::robot::testing {
 

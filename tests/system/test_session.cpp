@@ -15,12 +15,12 @@
 
 #include <fmt/format.h>
 
-#include "control/full_system.hpp"
 #include "core/csv.hpp"
 #include "learning/dataset.hpp"
 #include "learning/learner.hpp"
 #include "perception/udp.hpp"
 #include "perception/vision_message.hpp"
+#include "sim_backend/full_system.hpp"
 #include "system/session.hpp"
 #include "system/system.hpp"
 

@@ -10,11 +10,11 @@
 
 #include "../cli/run_command.hpp"
 #include "../viz/viz_test_util.hpp"
-#include "control/full_system.hpp"
 #include "core/io.hpp"
 #include "perception/udp.hpp"
 #include "perception/vision_message.hpp"
-#include "robot/arm_mujoco.hpp"
+#include "sim_backend/arm_mujoco.hpp"
+#include "sim_backend/full_system.hpp"
 #include "system/system.hpp"
 #include "vision/calibrate.hpp"
 #include "vision/camera_perception.hpp"

@@ -1,16 +1,16 @@
 #pragma once
-/// The parts of a full-system putt (control/full_system.hpp) other than its flow: the execution
+/// The parts of a full-system putt (sim_backend/full_system.hpp) other than its flow: the execution
 /// noise (a hook of the core loop), the checks of its worlds, the settled ball, the launch turned
 /// by a plant, the bookkeeping of limits and touches, and the per-thread scratch (PuttScratch's
-/// caches). Internal to the control library.
+/// caches). Internal to the simulator backend (not installed).
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <random>
 #include <vector>
 
-#include "control/full_system.hpp"
 #include "core/rng.hpp"
+#include "sim_backend/full_system.hpp"
 
 namespace mg::control {
 

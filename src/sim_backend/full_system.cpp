@@ -1,10 +1,10 @@
-#include "control/full_system.hpp"
+#include "sim_backend/full_system.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "control/full_system_parts.hpp"
 #include "robot/wam_model.hpp"
+#include "sim_backend/full_system_parts.hpp"
 
 namespace mg::control {
 namespace {

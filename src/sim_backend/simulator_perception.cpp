@@ -1,4 +1,4 @@
-#include "perception/simulator_perception.hpp"
+#include "sim_backend/simulator_perception.hpp"
 
 namespace mg::perception {
 

@@ -1,9 +1,9 @@
-#include "control/mujoco_arm.hpp"
+#include "sim_backend/mujoco_arm.hpp"
 
 #include <fmt/format.h>
 
 #include "core/error.hpp"
-#include "robot/wam_model.hpp"
+#include "sim_backend/wam_mjcf.hpp"
 
 namespace mg::control {
 

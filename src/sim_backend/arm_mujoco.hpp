@@ -1,7 +1,7 @@
 #pragma once
 /// The WAM in a compiled MuJoCo model (the simulator's side of the arm): its MuJoCo addresses,
 /// an ArmModel from the compiled model's limits, and the functions that read and write the arm's
-/// part of a simulation. The controller never includes this (control/mujoco_arm.hpp does, the
+/// part of a simulation. The controller never includes this (sim_backend/mujoco_arm.hpp does, the
 /// adapter).
 #include <mujoco/mujoco.h>
 

@@ -14,8 +14,8 @@
 
 #include "control/arm_interface.hpp"
 #include "control/minigolf_module.hpp"
-#include "robot/arm_mujoco.hpp"
 #include "sim/world.hpp"
+#include "sim_backend/arm_mujoco.hpp"
 
 namespace mg::control {
 

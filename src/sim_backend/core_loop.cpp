@@ -1,4 +1,4 @@
-#include "control/core_loop.hpp"
+#include "sim_backend/core_loop.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <exception>
 
-#include "control/mujoco_arm.hpp"
+#include "sim_backend/mujoco_arm.hpp"
 
 namespace mg::control {
 

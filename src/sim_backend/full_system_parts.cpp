@@ -1,5 +1,5 @@
-// The parts of a full-system putt other than its flow (control/full_system_parts.hpp).
-#include "control/full_system_parts.hpp"
+// The parts of a full-system putt other than its flow (sim_backend/full_system_parts.hpp).
+#include "sim_backend/full_system_parts.hpp"
 
 #include <algorithm>
 #include <cmath>

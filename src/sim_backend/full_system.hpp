@@ -1,19 +1,19 @@
 #pragma once
 /// Full-system putts: the module in fast (lockstep) simulator mode on the core loop
-/// (control/core_loop.hpp: physics in 1 ms steps, the core update every 2 steps, the robot update
-/// every 5th core tick), user requests between ticks. Deterministic: the same world, inputs and
-/// config give the same bits (wall-clock timing is measured but never fed back).
+/// (sim_backend/core_loop.hpp: physics in 1 ms steps, the core update every 2 steps, the robot
+/// update every 5th core tick), user requests between ticks. Deterministic: the same world, inputs
+/// and config give the same bits (wall-clock timing is measured but never fed back).
 #include <array>
 #include <cstdint>
 #include <limits>
 #include <memory>
 #include <vector>
 
-#include "control/core_loop.hpp"
 #include "control/minigolf_module.hpp"
-#include "control/mujoco_arm.hpp"
 #include "sim/putt.hpp"
 #include "sim/world.hpp"
+#include "sim_backend/core_loop.hpp"
+#include "sim_backend/mujoco_arm.hpp"
 
 namespace mg::control {
 

@@ -1,4 +1,4 @@
-#include "robot/arm_mujoco.hpp"
+#include "sim_backend/arm_mujoco.hpp"
 
 #include <fmt/format.h>
 

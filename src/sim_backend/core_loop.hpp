@@ -3,7 +3,7 @@
 /// putt harness (full_system.hpp), the console's lockstep and real-time modes and the viewer
 /// (system/session.hpp). ros2_control's read -> update -> write, libfranka's control callback.
 ///
-/// The loop is the simulator's side (it owns the MuJoCo adapter, control/mujoco_arm.hpp); the
+/// The loop is the simulator's side (it owns the MuJoCo adapter, sim_backend/mujoco_arm.hpp); the
 /// module it runs knows no simulator.
 ///
 /// One tick (one core period = steps_per_tick physics steps):
@@ -30,9 +30,9 @@
 #include <memory>
 
 #include "control/minigolf_module.hpp"
-#include "control/mujoco_arm.hpp"
-#include "perception/simulator_perception.hpp"
 #include "sim/world.hpp"
+#include "sim_backend/mujoco_arm.hpp"
+#include "sim_backend/simulator_perception.hpp"
 
 namespace mg::control {
 
