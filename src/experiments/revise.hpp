@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "belief/belief.hpp"
-#include "control/full_system.hpp"
 #include "experiments/identify.hpp"
 #include "selfteach/self_teach.hpp"
+#include "sim_backend/full_system.hpp"
 #include "system/system.hpp"
 
 namespace mg::experiments {
