@@ -139,12 +139,11 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
   return evaluate_policy(
       system,
       [&](const std::vector<field::Situation>& seen) {
-        // The model is asked where the robot believes the hole is, and its hit played with the
-        // arm it believes in (the same bits without a belief).
+        // The model is asked where the robot believes the hole is (the same bits without a
+        // belief).
         std::vector<field::Situation> situations;
         for (const auto& s : seen) situations.push_back(system::believed_situation(system, s));
         auto hits = predict_hits(model, system.field(), situations);
-        for (auto& h : hits) h.angle = system::believed_angle(system, h.angle);
         // A fixed speed is one the model learned on the surveyed green: played as the arrival
         // speed it gave there. So is the speed of an angle-only region, however the model
         // carries it.

@@ -212,8 +212,7 @@ std::array<double, 2> Planner::prior(const field::Situation& situation) const {
   if (!prior_model_) {
     club = prior_club(sys_.field(), region_, situation, arrival_, bias_, ratio_);
   } else {
-    // The model asked where the robot believes the hole is, its angle played with the arm it
-    // believes in (the same bits without a belief).
+    // The model asked where the robot believes the hole is (the same bits without a belief).
     const auto& m = *prior_model_;
     const field::Situation at = system::believed_situation(sys_, situation);
     const Eigen::MatrixXd q = input_row(sys_.field(), m.input_names, at).transpose();
@@ -224,7 +223,7 @@ std::array<double, 2> Planner::prior(const field::Situation& situation) const {
       v = p.mean(0, is);
     else if (const double* fixed = m.fixed_value("speed"))
       v = *fixed;
-    club = {system::believed_angle(sys_, p.mean(0, ia)), v};
+    club = {p.mean(0, ia), v};
     // The region's fixed speed is the surveyed green's; the believed green may ask for another.
     if (!region_.learn_speed) club[1] = system::believed_fixed_speed(sys_, at, club[1]);
     return club;

@@ -91,10 +91,6 @@ field::Situation believed_situation(const System& system, const field::Situation
   return {seen.ball, {seen.hole[0] + offset[0], seen.hole[1] + offset[1]}};
 }
 
-double believed_angle(const System& system, double angle) {
-  return angle - system.belief().arm.launch_angle_bias;
-}
-
 void System::check_request(double angle, double speed, const std::string& what) const {
   const auto& c = config_;
   if (!std::isfinite(angle) || angle < c.angle_min || angle > c.angle_max)

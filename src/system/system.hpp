@@ -137,11 +137,6 @@ double true_fixed_speed(const System& system, const field::Situation& situation,
 /// without a belief.
 field::Situation believed_situation(const System& system, const field::Situation& seen);
 
-/// [rad] A model's hitting angle, learned where the club launched the ball along it, as the robot
-/// plays it with the arm it believes in: less the launch angle bias it believes the arm adds.
-/// `angle` itself without a belief.
-double believed_angle(const System& system, double angle);
-
 /// Per-thread mutable state for putts on one System.
 struct SystemData {
   explicit SystemData(const System& system);
