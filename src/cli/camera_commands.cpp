@@ -6,8 +6,8 @@
 //                           [--plant P] [--grid NX,NY] [--bump CAMERA:DX,DY,DZ,YAW,PITCH]
 //                           [--frames DIR] [--json]
 //   minigolf vision-cam [--rig R] [--calibration C] [--to HOST:PORT] [--field F] [--hole X,Y]
-//                       [--angle RAD --speed M/S] [--duration S] [--frames DIR | --replay DIR]
-//                       [--fast]
+//                       [--angle RAD --speed M/S] [--duration S]
+//                       [--frames DIR | --replay DIR | --video LEFT,RIGHT] [--fast]
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -29,6 +29,7 @@
 #include "vision/calibration.hpp"
 #include "vision/rig.hpp"
 #include "vision/still_scene.hpp"
+#include "vision/video.hpp"
 #include "viz/renderer.hpp"
 
 namespace mg::cli {
@@ -302,6 +303,7 @@ void add_camera_commands(CLI::App& app) {
     std::string hole;
     double angle = 0.0, speed = 0.0, duration = 2.0;
     std::string frames, replay;
+    std::vector<std::string> videos;
     bool fast = false;
   };
   auto v = std::make_shared<CamOptions>();
@@ -330,6 +332,11 @@ void add_camera_commands(CLI::App& app) {
   cam->add_option("--replay", v->replay,
                   "Read the pairs from this folder (frame-NNNNN-CAMERA.png, as --frames writes "
                   "them; a real rig's footage) instead of rendering; no display needed");
+  add_list_option(cam, "--video", v->videos,
+                  "Read the pairs from two video files, the rig's first and second camera's "
+                  "footage (LEFT,RIGHT; what OpenCV's FFmpeg reads: MJPG AVI, MP4, ...) instead "
+                  "of rendering; no display needed",
+                  any_name());
   cam->add_flag("--fast", v->fast, "No pacing (tests)");
   cam->callback([v, angle_opt, speed_opt] {
     const auto [host, port] = perception::parse_host_port("--to", v->to);
@@ -337,6 +344,12 @@ void add_camera_commands(CLI::App& app) {
       throw InputError("vision-cam: --angle and --speed go together (a rolling ball)");
     if (!v->replay.empty() && (angle_opt->count() > 0 || !v->frames.empty()))
       throw InputError("vision-cam: --replay reads recorded frames (not with --angle, --frames)");
+    if (!v->videos.empty() && (angle_opt->count() > 0 || !v->frames.empty() || !v->replay.empty()))
+      throw InputError(
+          "vision-cam: --video reads recorded footage (not with --angle, --frames, --replay)");
+    if (!v->videos.empty() && v->videos.size() != 2)
+      throw InputError(fmt::format(
+          "--video: expected two files (the first and second camera's), got {}", v->videos.size()));
     const vision::Rig rig = vision::load_rig(v->rig);
     const system::System sys(system::load_config("", v->field));
     const sim::World& world = sys.ball_world();
@@ -354,12 +367,16 @@ void add_camera_commands(CLI::App& app) {
     const auto name = [&](int k, int i) {
       return fmt::format("frame-{:05d}-{}.png", k, rig.cameras[static_cast<std::size_t>(i)].name);
     };
+    std::vector<std::unique_ptr<vision::VideoReader>> videos;
+    for (const auto& file : v->videos)
+      videos.push_back(std::make_unique<vision::VideoReader>(file));
+    const bool recorded = !v->replay.empty() || !videos.empty();
     std::unique_ptr<viz::GlWindow> window;
     std::unique_ptr<vision::RigRenderer> renderer;
     sim::DataPtr d;
     std::filesystem::path out_dir;
     const bool moving = speed_opt->count() > 0;
-    if (v->replay.empty()) {
+    if (!recorded) {
       window = std::make_unique<viz::GlWindow>(64, 64, false, "minigolf vision-cam");
       renderer = std::make_unique<vision::RigRenderer>(world, rig);
       d = world.make_data();
@@ -387,7 +404,24 @@ void add_camera_commands(CLI::App& app) {
     for (std::uint64_t k = 0; k < count; ++k) {
       const double t = static_cast<double>(k) * period;  // capture time [s]
       const viz::Image* images[2];
-      if (!v->replay.empty()) {
+      if (!videos.empty()) {
+        bool ended = false;
+        for (int i = 0; i < 2; ++i) {
+          auto& image = replayed[static_cast<std::size_t>(i)];
+          if (!videos[static_cast<std::size_t>(i)]->read(image)) {
+            ended = true;  // the shorter footage ends the run
+            break;
+          }
+          const auto& cm = calib.cameras[static_cast<std::size_t>(i)];
+          if (image.width != cm.width || image.height != cm.height)
+            throw InputError(
+                fmt::format("--video: {}: expected {}x{} pixels (camera '{}'), got {}x{}",
+                            videos[static_cast<std::size_t>(i)]->path(), cm.width, cm.height,
+                            cm.name, image.width, image.height));
+          images[i] = &image;
+        }
+        if (ended) break;
+      } else if (!v->replay.empty()) {
         const std::filesystem::path dir(v->replay);
         if (!std::filesystem::exists(dir / name(static_cast<int>(k), 0))) break;  // footage ends
         for (int i = 0; i < 2; ++i) {
@@ -431,9 +465,10 @@ void add_camera_commands(CLI::App& app) {
         "vision-cam: sent {} to {}:{} from {} stereo frames ({}; {} without a fresh ball), send "
         "errors {}\n",
         sent, host, port, frames,
-        !v->replay.empty() ? "replayed " + v->replay
-        : moving           ? "rolling ball"
-                           : "ball at rest",
+        !videos.empty()      ? "videos " + fmt::format("{}", fmt::join(v->videos, ","))
+        : !v->replay.empty() ? "replayed " + v->replay
+        : moving             ? "rolling ball"
+                             : "ball at rest",
         stale, failed);
   });
 }

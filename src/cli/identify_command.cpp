@@ -15,6 +15,7 @@
 #include "belief/belief.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "cli/perception_args.hpp"
 #include "cli/progress.hpp"
 #include "core/io.hpp"
 #include "experiments/identify.hpp"
@@ -109,6 +110,7 @@ void add_identify_command(CLI::App& app) {
     int putts = 5;
     std::uint64_t seed = 1;
     bool json = false;
+    PerceptionArgs eyes;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -135,6 +137,7 @@ void add_identify_command(CLI::App& app) {
                   "friction kept");
   cmd->add_option("-o,--output", a->out, "Belief YAML file to write");
   cmd->add_flag("--json", a->json, "Print the belief as JSON instead of the table");
+  add_perception_options(cmd, a->eyes);
   cmd->callback([a] {
     // Every input before any work: the output, the field, the plant, the prior, the balls.
     if (!a->out.empty()) check_output_file(a->out);
@@ -142,7 +145,11 @@ void add_identify_command(CLI::App& app) {
     const plant::Plant plant = load_plant_arg(a->plant);
     std::optional<belief::Belief> prior;
     if (!a->prior.empty()) prior = belief::load_belief(a->prior);
-    const system::System truth(config, plant);
+    field::Field lane = field::load_field(config.field);
+    const field::Field seen = plant::true_field(lane, plant);
+    system::PerceptionFactory eyes = perception_factory(a->eyes, {&seen});
+    // The robot's own putts (the belief's model of them is made without cameras: it imagines).
+    const system::System truth(config, std::move(lane), plant, {}, std::move(eyes));
     const field::Field& surveyed = truth.field();
     if (prior) (void)belief::believed_field(surveyed, *prior);  // applies to this field
     std::vector<IdentifyHit> hits =

@@ -20,6 +20,7 @@
 #include "belief/belief.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "cli/perception_args.hpp"
 #include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
@@ -181,6 +182,7 @@ void add_evaluate(CLI::App& app) {
     std::uint64_t seed = 1;
     bool json = false, no_oracle = false, learn = false, no_revise = false;
     double perception_noise = 0.0, torque_noise = 0.0;
+    PerceptionArgs eyes;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -223,14 +225,20 @@ void add_evaluate(CLI::App& app) {
                   "Std [m] of the perceived hole and ball positions, per axis");
   cmd->add_option("--torque-noise", a->torque_noise,
                   "Joint torque noise std, fraction of the limits");
+  add_perception_options(cmd, a->eyes);
   cmd->callback([a] {
     if (!a->save_model.empty() && !a->learn) throw InputError("--save-model: only with --learn");
     if (!a->belief_out.empty() && (!a->learn || a->no_revise))
       throw InputError("--belief-out: only with --learn, revising");
     if (a->no_revise && !a->learn) throw InputError("--no-revise: only with --learn");
     const learning::Model model = learning::load_model(a->model);
-    const system::System sys(system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model),
-                             load_plant_arg(a->sys.plant), load_belief_arg(a->sys.belief));
+    const auto config = system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model);
+    const plant::Plant plant = load_plant_arg(a->sys.plant);
+    field::Field lane = field::load_field(config.field);
+    const field::Field truth = plant::true_field(lane, plant);
+    system::PerceptionFactory eyes = perception_factory(a->eyes, {&truth});
+    const system::System sys(config, std::move(lane), plant, load_belief_arg(a->sys.belief),
+                             std::move(eyes));
     experiments::check_playable_model(model, a->model, &sys);
     const field::Situations region =
         field::region_from_spec(sys.field(), a->situations_spec, a->balls);

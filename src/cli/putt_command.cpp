@@ -13,6 +13,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "cli/perception_args.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "ds/hitting_model.hpp"
@@ -20,7 +21,6 @@
 #include "sim/putt.hpp"
 #include "system/putt.hpp"
 #include "system/system.hpp"
-#include "vision/calibration.hpp"
 #include "vision/camera_perception.hpp"
 #include "viz/figure_data.hpp"
 
@@ -66,9 +66,7 @@ void add_putt_command(CLI::App& app) {
     std::string hitting_model;
     std::string config;
     std::string plant;
-    std::string perception = "truth";
-    std::string rig = vision::kDefaultRig;
-    std::string calibration;
+    PerceptionArgs eyes;
   };
   auto o = std::make_shared<Options>();
   CLI::App* cmd = app.add_subcommand("putt", "Simulate one putt and report the outcome");
@@ -100,16 +98,7 @@ void add_putt_command(CLI::App& app) {
   cmd->add_option("--config", o->config,
                   "Module config YAML (gains, envelope, ...; see notes/control.md)");
   cmd->add_option("--plant", o->plant, kPlantHelp);
-  cmd->add_option("--perception", o->perception,
-                  "What the module sees: truth (the simulator's) or camera (the rig's cameras "
-                  "render the simulation; needs a display or xvfb-run)")
-      ->check(CLI::IsMember({"truth", "camera"}))
-      ->capture_default_str();
-  cmd->add_option("--rig", o->rig, "With --perception camera: rig file or shipped rig name")
-      ->capture_default_str();
-  cmd->add_option("--calibration", o->calibration,
-                  "With --perception camera: calibration file (vision calibrate; default: the "
-                  "rig's exact cameras)");
+  add_perception_options(cmd, o->eyes);
   cmd->callback([o] {
     system::PuttSpec spec;
     spec.angle = o->angle;
@@ -130,15 +119,11 @@ void add_putt_command(CLI::App& app) {
     if (spec.ball) system::check_ball_position(sys.field(), *spec.ball, "--ball");
     system::SystemData data(sys);
     std::unique_ptr<vision::CameraPerceptionSource> cameras;
-    if (o->perception == "camera") {
-      if (o->ball_only) throw InputError("--perception camera: only with the arm");
-      vision::Rig rig = vision::load_rig(o->rig);
-      vision::check_rig_sees_field(rig, sys.arm_world().field());
-      vision::Calibration calib = o->calibration.empty() ? vision::exact_calibration(rig)
-                                                         : vision::load_calibration(o->calibration);
-      vision::check_calibration_matches(calib, rig);
+    if (o->eyes.perception == "camera" && o->ball_only)
+      throw InputError("--perception camera: only with the arm");
+    if (auto c = load_perception(o->eyes, {&sys.arm_world().field()})) {
       cameras = std::make_unique<vision::CameraPerceptionSource>(
-          std::move(rig), vision::StereoModel(std::move(calib), sys.field()));
+          std::move(c->rig), vision::StereoModel(std::move(c->calibration), sys.field()));
       spec.perception_source = cameras.get();
     }
     const system::PuttReport r = system::putt(sys, data, spec);

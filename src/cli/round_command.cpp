@@ -15,6 +15,7 @@
 
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "cli/perception_args.hpp"
 #include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
@@ -40,9 +41,11 @@ struct Args {
   int plants = 0;  ///< --compare over this many random plants (and --plant, if given)
   std::uint64_t plant_seed = 1;
   SystemArgs system;
+  PerceptionArgs eyes;
 };
 
-game::RoundOptions round_options(const Args& a) {
+game::RoundOptions round_options(const Args& a, const std::vector<game::Course>& courses,
+                                 const plant::Plant& plant) {
   game::RoundOptions o;
   o.player = game::parse_player(a.player, "--player");
   o.seed = a.seed;
@@ -53,6 +56,13 @@ game::RoundOptions round_options(const Args& a) {
   o.models = experiments::load_round_models(a.models, "--model");
   o.belief = load_belief_arg(a.system.belief);
   o.revise = !a.no_revise;
+  // The cameras must see every lane of every course, as it really is.
+  std::vector<field::Field> lanes;
+  for (const auto& course : courses)
+    for (const auto& hole : course.holes) lanes.push_back(plant::true_field(hole.field, plant));
+  std::vector<const field::Field*> seen;
+  for (const auto& lane : lanes) seen.push_back(&lane);
+  o.perception = perception_factory(a.eyes, seen);
   o.validate();
   return o;
 }
@@ -61,10 +71,10 @@ void run_round(const Args& a) {
   if (a.courses.size() != 1)
     throw InputError("--course: one course per round (several only with --compare)");
   const game::Course course = game::load_course(a.courses[0]);
-  const game::RoundOptions o = round_options(a);
+  const plant::Plant plant = load_plant_arg(a.system.plant);
+  const game::RoundOptions o = round_options(a, {course}, plant);
   if (!a.out.empty()) check_output_file(a.out);
   const auto config = system::load_config(a.system.config, "", a.system.hitting_model);
-  const plant::Plant plant = load_plant_arg(a.system.plant);
   game::ImaginedCache cache;
   Progress progress(fmt::format("play {} ({})", course.name, a.player),
                     static_cast<int>(course.holes.size()));
@@ -136,10 +146,10 @@ void run_compare(const Args& a) {
   if (a.plants > 0) return run_plant_compare(a);
   std::vector<game::Course> courses;
   for (const auto& c : a.courses) courses.push_back(game::load_course(c));
-  const game::RoundOptions base = round_options(a);
+  const plant::Plant plant = load_plant_arg(a.system.plant);
+  const game::RoundOptions base = round_options(a, courses, plant);
   if (!a.out.empty()) check_output_file(a.out);
   const auto config = system::load_config(a.system.config, "", a.system.hitting_model);
-  const plant::Plant plant = load_plant_arg(a.system.plant);
   const std::vector<game::Player> players = game::comparison_players();
   const int rounds = static_cast<int>(courses.size() * players.size()) * a.seeds;
   Progress progress("play --compare", rounds);
@@ -208,6 +218,7 @@ void add_round_command(CLI::App& app) {
                   "Hitting DS model file (default: the shipped one)");
   cmd->add_option("--plant", a->system.plant, kPlantHelp);
   cmd->add_option("--belief", a->system.belief, kBeliefHelp);
+  add_perception_options(cmd, a->eyes);
   cmd->add_flag("--no-revise", a->no_revise,
                 "The robot keeps its belief of the green (no revision from the balls it watches)");
   cmd->add_option("--threads", a->system.threads,

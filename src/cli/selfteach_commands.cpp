@@ -16,6 +16,7 @@
 #include "belief/belief.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
+#include "cli/perception_args.hpp"
 #include "cli/progress.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
@@ -41,6 +42,7 @@ void add_self_teach(CLI::App& app) {
     double arrival = 0.0;
     std::uint64_t seed = 1;
     bool no_revise = false;
+    PerceptionArgs eyes;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand(
@@ -84,6 +86,7 @@ void add_self_teach(CLI::App& app) {
                   "The belief the model is to be played in (with --identify, or --prior "
                   "revising): the file to write")
       ->check(output_file());
+  add_perception_options(cmd, a->eyes);
   cmd->callback([a] {
     if (a->identify > 0 && a->identify >= a->budget)
       throw InputError(fmt::format("--identify: expected fewer putts than --budget ({}), got {}",
@@ -109,12 +112,15 @@ void add_self_teach(CLI::App& app) {
         system::load_config(a->sys.config, a->sys.field, a->sys.hitting_model);
     const plant::Plant plant = load_plant_arg(a->sys.plant);
     plant::Plant believed = load_belief_arg(a->sys.belief);
+    const field::Field lane = field::load_field(config.field);
+    const field::Field truth = plant::true_field(lane, plant);
+    const system::PerceptionFactory eyes = perception_factory(a->eyes, {&truth});
     // What the robot believes, with its uncertainty: the given belief, then identify's.
     std::optional<belief::Belief> prior;
     if (!a->sys.belief.empty()) prior = belief::load_belief(a->sys.belief);
     if (a->identify > 0) {
       // The belief first: identify's putts, its fit with the given belief as the prior.
-      const system::System before(config, plant, believed);
+      const system::System before(config, lane, plant, believed, eyes);
       Progress id_bar("identify", a->identify);
       const auto id = experiments::identify_world(config, before, a->identify, a->balls, a->seed,
                                                   prior, [&](int k) { id_bar.update(k); });
@@ -130,7 +136,7 @@ void add_self_teach(CLI::App& app) {
       if (!a->belief_out.empty() && !revise)
         write_file_atomic(a->belief_out, belief::belief_to_yaml(id.belief));
     }
-    const system::System sys(config, plant, believed);
+    const system::System sys(config, lane, plant, believed, eyes);
     std::unique_ptr<experiments::BeliefReviser> reviser;
     if (revise) reviser = experiments::revise_hook(sys, o, prior);
     field::Situations region = field::region_from_spec(sys.field(), a->situations, a->balls);

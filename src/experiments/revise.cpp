@@ -58,7 +58,8 @@ bool BeliefReviser::observe(const field::Situation& situation, double angle, dou
 
 std::unique_ptr<system::System> system_in_belief(const system::System& base,
                                                  const plant::Plant& belief) {
-  return std::make_unique<system::System>(base.config(), base.survey(), base.plant(), belief);
+  return std::make_unique<system::System>(base.config(), base.survey(), base.plant(), belief,
+                                          base.perception_factory());
 }
 
 std::unique_ptr<BeliefReviser> revise_hook(const system::System& system,

@@ -55,8 +55,8 @@ class BeliefReviser {
   double last_cpu_ = 0.0, max_cpu_ = 0.0;
 };
 
-/// The system of `base`'s configuration, field file and world (its plant) with the robot's belief
-/// `belief` instead of base's.
+/// The system of `base`'s configuration, field file, world (its plant) and perception (its
+/// cameras, if any) with the robot's belief `belief` instead of base's.
 std::unique_ptr<system::System> system_in_belief(const system::System& base,
                                                  const plant::Plant& belief);
 

@@ -154,7 +154,11 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
     };
     HoleWorlds w;
     w.belief = believed();
-    w.truth = std::make_unique<system::System>(config, ch.field, plant);
+    const bool arm_player =
+        options.player != Player::kOracle && options.player != Player::kExactOracle;
+    w.truth = std::make_unique<system::System>(
+        config, ch.field, plant, plant::Plant{},
+        arm_player ? options.perception : system::PerceptionFactory{});
     w.data = std::make_unique<system::SystemData>(*w.truth);
     const field::Field& field = ch.field;  // its geometry: the same in every belief
     const auto hole = field.hole.position;

@@ -26,6 +26,7 @@
 #include "game/lane_region.hpp"
 #include "game/planner.hpp"
 #include "plant/plant.hpp"
+#include "system/system.hpp"
 
 namespace mg::game {
 
@@ -65,6 +66,10 @@ struct RoundOptions {
   /// strokes) and plans each stroke in it; false: it keeps `belief` (the rounds before revision).
   bool revise = true;
   PlannerOptions planner;
+  /// What the robot's module sees in the putts the arm plays (calibration putts, strokes), e.g.
+  /// the cameras (vision::camera_perception); empty: the simulator's truth. Never in the
+  /// planner's imagined putts (those are the robot's model).
+  system::PerceptionFactory perception;
   void validate() const;
 };
 

@@ -24,6 +24,7 @@
 #include "system/distributed.hpp"
 #include "system/parallel.hpp"
 #include "teacher/teacher.hpp"
+#include "vision/camera_perception.hpp"
 
 namespace mg::python {
 namespace {
@@ -140,9 +141,21 @@ void bind_system(py::module_& m) {
       "world, the hitting model and the control module. Immutable; shared by threads.")
       .def(py::init([](const std::string& field, const std::string& config,
                        const std::string& hitting_model, const std::string& plant,
-                       std::optional<py::bytes> plant_text, const std::string& belief) {
+                       std::optional<py::bytes> plant_text, const std::string& belief,
+                       const std::string& perception, std::optional<std::string> rig,
+                       std::optional<std::string> calibration) {
              if (plant_text && plant.empty())
                throw InputError("plant_text: needs plant (the name its errors and hash carry)");
+             if (perception != "truth" && perception != "camera") {
+               std::string shown = perception.substr(0, 80);
+               for (char& ch : shown)
+                 if (static_cast<unsigned char>(ch) < 0x20) ch = '?';  // one line
+               throw InputError(
+                   fmt::format("perception: expected 'truth' or 'camera', got '{}'", shown));
+             }
+             if (perception != "camera" && (rig || calibration))
+               throw InputError(
+                   fmt::format("{}: only with perception='camera'", rig ? "rig" : "calibration"));
              // Held as a std::string before the GIL is released.
              const std::optional<std::string> text =
                  plant_text ? std::optional<std::string>(std::string(*plant_text)) : std::nullopt;
@@ -154,17 +167,32 @@ void bind_system(py::module_& m) {
                p = plant::load_plant(plant);
              plant::Plant b =
                  belief.empty() ? plant::Plant{} : belief::load_belief(belief).estimate;
-             return std::make_unique<system::System>(
-                 system::load_config(config, field, hitting_model), std::move(p), std::move(b));
+             const control::ModuleConfig c = system::load_config(config, field, hitting_model);
+             field::Field lane = field::load_field(c.field);
+             system::PerceptionFactory eyes;
+             if (perception == "camera") {
+               vision::Cameras cameras = vision::load_cameras(rig.value_or(vision::kDefaultRig),
+                                                              calibration.value_or(""));
+               vision::check_rig_sees_field(cameras.rig, plant::true_field(lane, p));
+               eyes = vision::camera_perception(std::move(cameras));
+             }
+             return std::make_unique<system::System>(c, std::move(lane), std::move(p), std::move(b),
+                                                     std::move(eyes));
            }),
            py::arg("field") = "flat", py::arg("config") = "", py::arg("hitting_model") = "",
            py::arg("plant") = "", py::arg("plant_text") = py::none(), py::arg("belief") = "",
+           py::arg("perception") = "truth", py::arg("rig") = py::none(),
+           py::arg("calibration") = py::none(),
            "field: shipped name or path; config: module YAML (empty: defaults); hitting_model: DS "
            "model file (empty: the configured default); plant: plant file, the world as it "
            "really is (docs/reality.md; empty: the robot's model); plant_text: the plant file's "
            "bytes, read earlier (read_plant_file), parsed instead of reading `plant` again; "
            "belief: belief file, what the robot believes beyond its field file (docs/belief.md; "
-           "`field` is then the field file with it applied)")
+           "`field` is then the field file with it applied); perception: what the module sees, "
+           "'truth' (the simulator's) or 'camera' (the rig's cameras render the simulation: a "
+           "display or xvfb-run; each SystemData owns its cameras); rig: rig file or shipped "
+           "name (default 'stereo'), calibration: calibration file (default: the rig's exact "
+           "cameras), both only with perception='camera'")
       .def_property_readonly(
           "plant",
           [](const system::System& s) -> py::object {

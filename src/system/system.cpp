@@ -39,17 +39,20 @@ control::ModuleConfig load_config(const std::string& config_path, const std::str
   return config;
 }
 
-System::System(const control::ModuleConfig& config, plant::Plant plant, plant::Plant belief)
-    : System(config, field::load_field(config.field), std::move(plant), std::move(belief)) {}
+System::System(const control::ModuleConfig& config, plant::Plant plant, plant::Plant belief,
+               PerceptionFactory perception)
+    : System(config, field::load_field(config.field), std::move(plant), std::move(belief),
+             std::move(perception)) {}
 
 System::System(const control::ModuleConfig& config, field::Field field, plant::Plant plant,
-               plant::Plant belief)
+               plant::Plant belief, PerceptionFactory perception)
     : config_(config),
       survey_(std::move(field)),
       belief_plant_(std::move(belief)),
       belief_(plant::true_field(survey_, belief_plant_)),
       plant_(std::move(plant)),
-      truth_(plant::true_field(survey_, plant_)) {
+      truth_(plant::true_field(survey_, plant_)),
+      perception_(std::move(perception)) {
   config_.validate();
   plant_.validate();
   belief_plant_.validate();
@@ -157,7 +160,8 @@ HitPose hit_pose(const System& system, std::array<double, 2> ball, double angle,
 SystemData::SystemData(const System& system)
     : arm(system.arm_world().make_data()),
       ball(system.ball_world().make_data()),
-      scratch(std::make_unique<control::PuttScratch>()) {}
+      scratch(std::make_unique<control::PuttScratch>()),
+      perception(system.perception_factory() ? system.perception_factory()(system) : nullptr) {}
 
 namespace {
 
@@ -231,6 +235,7 @@ control::FullPuttResult arm_putt(const System& system, SystemData& data, std::ar
   // The roll finishes in the ball-only world once the club has left the ball (same outcome,
   // notes/speed.md); the scratch caches the approach to the rest pose of recent angles.
   if (options.ball_world == nullptr) options.ball_world = &system.ball_world();
+  if (options.perception_source == nullptr) options.perception_source = data.perception.get();
   // A field whose tee is not the robot frame's origin: the base stands beside the tee.
   if (options.stance.identity()) options.stance = stance_for(system, system.field().tee, 0.0);
   if (options.stance.identity())

@@ -6,6 +6,7 @@
 /// experiments build a System instead of assembling the world themselves.
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,6 +21,15 @@
 #include "sim_backend/full_system.hpp"
 
 namespace mg::system {
+
+class System;
+
+/// Makes the perception of one thread's putts on `system` (SystemData::perception): what the
+/// module of every full-system putt reads instead of the simulator's truth (e.g. the cameras of
+/// vision/camera_perception.hpp, made by the doors above this layer). Called once per SystemData,
+/// on the thread that makes it; a source is never shared by threads. Empty: the truth.
+using PerceptionFactory =
+    std::function<std::unique_ptr<perception::PerceptionSource>(const System& system)>;
 
 /// A relative path that does not exist from the working directory is tried from the repository
 /// root (the parent of the data folder), so shipped defaults such as
@@ -44,11 +54,13 @@ class System {
   /// `belief`: the robot's estimate of how the world differs from its field file, in a plant's
   /// keys (docs/belief.md); field() is the field file with it applied. Empty: it believes the
   /// file (the same bits as without one).
+  /// `perception`: what the module of its putts perceives (each SystemData makes its own source
+  /// with it); empty: the simulator's truth, as before.
   explicit System(const control::ModuleConfig& config, plant::Plant plant = {},
-                  plant::Plant belief = {});
+                  plant::Plant belief = {}, PerceptionFactory perception = {});
   /// The same with an already loaded field (config.field is then only a label).
   System(const control::ModuleConfig& config, field::Field field, plant::Plant plant = {},
-         plant::Plant belief = {});
+         plant::Plant belief = {}, PerceptionFactory perception = {});
   System(const System&) = delete;
   System& operator=(const System&) = delete;
 
@@ -68,6 +80,8 @@ class System {
     return *ball_world_;
   }  ///< true field only (the arm world's options)
   const control::ModuleModel& module() const { return *module_; }
+  /// What the module perceives in this System's putts (empty: the simulator's truth).
+  const PerceptionFactory& perception_factory() const { return perception_; }
 
   /// Throws InputError naming `what` unless (angle, speed) is inside the module's safe envelope.
   void check_request(double angle, double speed, const std::string& what) const;
@@ -90,6 +104,7 @@ class System {
   std::unique_ptr<sim::World> ball_world_;
   std::unique_ptr<control::ModuleModel> module_;
   robot::WamMount true_mount_;  ///< the real arm in the robot's frame (the plant's friction, club)
+  PerceptionFactory perception_;
 };
 
 /// The stance rule (docs/round.md "How a stroke is played", 3. Stand): the base stands beside the
@@ -148,6 +163,9 @@ struct SystemData {
   std::unique_ptr<sim::World> stance_world;
   robot::Stance stance;
   sim::DataPtr stance_arm;
+  /// This thread's perception (System::perception_factory; nullptr: the truth): arm_putt hands
+  /// it to every putt that names none. Last: released before the worlds it renders.
+  std::unique_ptr<perception::PerceptionSource> perception;
 };
 
 /// Where the hole really is when the robot sees it at `hole`: + the plant's hole offset and this

@@ -6,8 +6,10 @@
 #include "viz/renderer.hpp"
 
 namespace mg::vision {
-CameraPerception::CameraPerception(RigRenderer& renderer, const StereoModel& model, const mjData* d)
+CameraPerception::CameraPerception(RigRenderer& renderer, const StereoModel& model, const mjData* d,
+                                   viz::GlWindow* window)
     : renderer_(&renderer),
+      window_(window),
       model_(&model),
       d_(d),
       data_(model),
@@ -23,6 +25,15 @@ perception::Perceived CameraPerception::perceive(double now) noexcept {
     // At most one capture per call: the image shows the simulation as it is now.
     if (now >= next_capture_) {
       const auto t0 = std::chrono::steady_clock::now();
+      struct Current {  // the context on this thread for the capture only
+        viz::GlWindow* w;
+        explicit Current(viz::GlWindow* window) : w(window) {
+          if (w) w->make_current();
+        }
+        ~Current() {
+          if (w) viz::GlWindow::release_current();
+        }
+      } current(window_);
       const viz::Image* images[2] = {&renderer_->render(0, d_), &renderer_->render(1, d_)};
       stats_.render_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -68,19 +79,41 @@ struct CameraPerceptionSource::Gl {
 };
 
 CameraPerceptionSource::CameraPerceptionSource(Rig rig, StereoModel model)
-    : gl_(std::make_unique<Gl>()), rig_(std::move(rig)), model_(std::move(model)) {}
+    : gl_(std::make_unique<Gl>()), rig_(std::move(rig)), model_(std::move(model)) {
+  viz::GlWindow::release_current();  // made current by the window; taken for each capture
+}
 
 CameraPerceptionSource::~CameraPerceptionSource() {
+  gl_->window.make_current();  // the renderers free their GL resources in it
   perception_.reset();
   renderer_.reset();
+  viz::GlWindow::release_current();
 }
 
 perception::Perception& CameraPerceptionSource::attach(const sim::World& world, const mjData* d) {
   gl_->window.make_current();
-  if (!renderer_ || &renderer_->world() != &world)
+  if (!renderer_ || &renderer_->world() != &world) {
+    renderer_.reset();
     renderer_ = std::make_unique<RigRenderer>(world, rig_);
-  perception_ = std::make_unique<CameraPerception>(*renderer_, model_, d);
+  }
+  viz::GlWindow::release_current();
+  perception_ = std::make_unique<CameraPerception>(*renderer_, model_, d, &gl_->window);
   return *perception_;
+}
+
+Cameras load_cameras(const std::string& rig, const std::string& calibration) {
+  Cameras c{load_rig(rig), {}};
+  c.calibration = calibration.empty() ? exact_calibration(c.rig) : load_calibration(calibration);
+  check_calibration_matches(c.calibration, c.rig);
+  return c;
+}
+
+system::PerceptionFactory camera_perception(Cameras cameras) {
+  auto shared = std::make_shared<const Cameras>(std::move(cameras));
+  return [shared](const system::System& system) -> std::unique_ptr<perception::PerceptionSource> {
+    return std::make_unique<CameraPerceptionSource>(
+        shared->rig, StereoModel(shared->calibration, system.field()));
+  };
 }
 
 }  // namespace mg::vision

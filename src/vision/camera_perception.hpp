@@ -13,8 +13,14 @@
 #include <optional>
 
 #include "sim_backend/simulator_perception.hpp"
+#include "system/system.hpp"
+#include "vision/calibration.hpp"
 #include "vision/rig_renderer.hpp"
 #include "vision/stereo_pipeline.hpp"
+
+namespace mg::viz {
+class GlWindow;
+}
 
 namespace mg::vision {
 
@@ -32,8 +38,11 @@ struct CameraStats {
 class CameraPerception final : public perception::Perception {
  public:
   /// Renders the state of `d` (a data of renderer.world()) with `renderer`; the pipeline's model
-  /// is `model`. Holds references: all must outlive it.
-  CameraPerception(RigRenderer& renderer, const StereoModel& model, const mjData* d);
+  /// is `model`. Holds references: all must outlive it. `window` (optional): the OpenGL context
+  /// of `renderer`, made current for each capture and released after it (the thread that
+  /// renders may change between putts, as Python's threads may hand a SystemData on).
+  CameraPerception(RigRenderer& renderer, const StereoModel& model, const mjData* d,
+                   viz::GlWindow* window = nullptr);
   perception::Perceived perceive(double now) noexcept override;
 
   const StereoData& data() const { return data_; }
@@ -43,6 +52,7 @@ class CameraPerception final : public perception::Perception {
 
  private:
   RigRenderer* renderer_;
+  viz::GlWindow* window_;
   const StereoModel* model_;
   const mjData* d_;
   StereoData data_;
@@ -78,5 +88,23 @@ class CameraPerceptionSource final : public perception::PerceptionSource {
   std::unique_ptr<RigRenderer> renderer_;
   std::unique_ptr<CameraPerception> perception_;
 };
+
+/// The cameras of a run (`--perception camera [--rig R] [--calibration C]`, Python's
+/// `System(perception="camera")`): the rig as it is and the robot's calibration of it.
+struct Cameras {
+  Rig rig;
+  Calibration calibration;
+};
+
+/// Loads the rig (file or shipped name) and the calibration (empty: the rig's exact cameras) and
+/// checks that they match. Throws InputError/IoError naming the file (one line).
+Cameras load_cameras(const std::string& rig, const std::string& calibration);
+
+/// The perception of a System's putts by `cameras` (system::PerceptionFactory): every SystemData
+/// gets its own CameraPerceptionSource (its own hidden OpenGL window, made on the thread that
+/// makes the data: a display or `xvfb-run -a`), its pipeline's model the calibration on the
+/// System's field (the belief). Check check_rig_sees_field first: a source is made only when a
+/// thread starts its putts.
+system::PerceptionFactory camera_perception(Cameras cameras);
 
 }  // namespace mg::vision

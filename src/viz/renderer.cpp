@@ -58,6 +58,13 @@ void start_glfw() {
   std::atexit(glfwTerminate);
 }
 
+/// Windows are made and destroyed one at a time (the hints and the last error are GLFW's global
+/// state; threads may each own a window: one camera perception per thread).
+std::mutex& window_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 }  // namespace
 
 void check_image_size(int width, int height) {
@@ -69,6 +76,7 @@ void check_image_size(int width, int height) {
 GlWindow::GlWindow(int width, int height, bool visible, const std::string& title) {
   check_image_size(width, height);
   start_glfw();
+  const std::lock_guard<std::mutex> lock(window_mutex());
   glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_DOUBLEBUFFER, visible ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_SAMPLES, 4);
@@ -84,10 +92,13 @@ GlWindow::GlWindow(int width, int height, bool visible, const std::string& title
 }
 
 GlWindow::~GlWindow() {
+  const std::lock_guard<std::mutex> lock(window_mutex());
   if (window_) glfwDestroyWindow(window_);
 }
 
 void GlWindow::make_current() { glfwMakeContextCurrent(window_); }
+
+void GlWindow::release_current() { glfwMakeContextCurrent(nullptr); }
 
 std::array<int, 2> GlWindow::framebuffer_size() const {
   int w = 0, h = 0;

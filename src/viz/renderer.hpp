@@ -35,6 +35,8 @@ class GlWindow {
   GLFWwindow* handle() const { return window_; }
   /// Makes this window's OpenGL context current on the calling thread.
   void make_current();
+  /// Leaves the calling thread without a current context (so another thread may take it).
+  static void release_current();
   /// The framebuffer's size [pixels] (the window's, times the screen's scale).
   std::array<int, 2> framebuffer_size() const;
   /// Shows what was drawn (visible windows) and handles the window's events.

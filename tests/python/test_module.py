@@ -160,6 +160,25 @@ def test_bad_arguments_raise_the_cli_messages(flat):
         minigolf.train(np.zeros((3, 2)), np.zeros((3, 2)), method="svm")
 
 
+def test_bad_perception_values_are_one_line_errors():
+    """System(perception=...): 'truth' (the default) or 'camera'; rig and calibration only with
+    the cameras; a missing or bad file is the command line's message (no display needed)."""
+    for kwargs, kind, needle in [
+        (dict(perception="eyes"), ValueError, "perception: expected 'truth' or 'camera', got 'eyes'"),
+        (dict(rig="stereo"), ValueError, "rig: only with perception='camera'"),
+        (dict(calibration="c.yaml"), ValueError, "calibration: only with perception='camera'"),
+        (dict(perception="camera", rig="/no/such/rig.yaml"), Exception, "/no/such/rig.yaml"),
+        (dict(perception="camera", calibration="/no/such/c.yaml"), Exception, "/no/such/c.yaml"),
+    ]:
+        with pytest.raises(kind) as e:
+            minigolf.System(field="flat", **kwargs)
+        assert needle in str(e.value) and "\n" not in str(e.value), (kwargs, str(e.value))
+    msg = cli_error("putt", "--angle", "0", "--speed", "1", "--perception", "camera", "--rig", "/no/such/rig.yaml")
+    with pytest.raises(Exception) as e:
+        minigolf.System(field="flat", perception="camera", rig="/no/such/rig.yaml")
+    assert str(e.value) == msg
+
+
 def test_long_calls_release_the_gil(flat):
     # While one thread putts, the interpreter keeps running Python code in another ...
     ticks = 0

@@ -166,3 +166,15 @@ def test_the_round_environment_draws_the_lane_the_ball_and_its_path(player):
     env.close()
     assert np.array_equal(env.render(), after)  # a closed env draws again
     env.close()
+
+
+def test_a_system_with_cameras_putts_as_the_truth(tmp_path):
+    """System(perception="camera"): the module reads the rig's cameras (a 320x240 copy of the
+    shipped rig at 30 Hz here); the putt is played as with the simulator's truth."""
+    rig = tmp_path / "small.yaml"
+    text = open(os.path.join(os.path.dirname(__file__), "..", "..", "data", "rigs", "stereo.yaml")).read()
+    rig.write_text(text.replace("width: 640", "width: 320").replace("height: 480", "height: 240").replace("rate_hz: 60", "rate_hz: 30"))
+    truth = minigolf.System(field="flat").putt(0.0, 1.2)
+    seen = minigolf.System(field="flat", perception="camera", rig=str(rig)).putt(0.0, 1.2)
+    assert seen.sunk == truth.sunk
+    assert np.allclose(seen.rest_position, truth.rest_position, atol=0.05)

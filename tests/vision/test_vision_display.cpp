@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <fstream>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "../cli/run_command.hpp"
 #include "../viz/viz_test_util.hpp"
@@ -259,6 +261,45 @@ cameras:
   EXPECT_NEAR(c["rest_position"][1].get<double>(), t["rest_position"][1].get<double>(), 0.05);
 }
 
+// `evaluate --perception camera`: every thread has its own cameras (its own OpenGL context), and
+// the evaluation is the same to the bit on one thread and on two; it plays what the truth plays.
+// (A 320x240 copy of the shipped rig at 30 Hz: half the frames to render.)
+TEST(VisionCliDisplay, EvaluateWithCamerasHasTheSameBitsOnOneAndTwoThreads) {
+  MG_NEED_DISPLAY();
+  const auto dir = viz::testing::temp_dir("vision_evaluate");
+  std::string small = read_text_file(data_dir() / "rigs" / "stereo.yaml");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"width: 640", "width: 320"},
+                                 {"height: 480", "height: 240"},
+                                 {"rate_hz: 60", "rate_hz: 30"}})
+    for (auto at = small.find(from); at != std::string::npos; at = small.find(from))
+      small.replace(at, from.size(), to);
+  const std::string rig = (dir / "small.yaml").string();
+  std::ofstream(rig) << small;
+  const std::string model = (dir / "flat.json").string();
+  ASSERT_EQ(
+      cli::testing::run_minigolf("train --method gpr " +
+                                 (data_dir() / "datasets" / "flat.csv").string() + " -o " + model)
+          .exit_code,
+      0);
+  const std::string evaluate =
+      "evaluate --field flat --situations 2 --seed 4 --no-oracle --json --model " + model;
+  const auto one =
+      cli::testing::run_minigolf(evaluate + " --perception camera --threads 1 --rig " + rig);
+  const auto two =
+      cli::testing::run_minigolf(evaluate + " --perception camera --threads 2 --rig " + rig);
+  const auto truth = cli::testing::run_minigolf(evaluate + " --threads 2");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  ASSERT_EQ(truth.exit_code, 0) << truth.err;
+  EXPECT_EQ(one.out, two.out);
+  const auto c = nlohmann::json::parse(one.out), t = nlohmann::json::parse(truth.out);
+  EXPECT_EQ(c["sunk"], t["sunk"]);
+  for (std::size_t i = 0; i < 2; ++i)
+    EXPECT_NEAR(c["rows"][i]["closest_approach"].get<double>(),
+                t["rows"][i]["closest_approach"].get<double>(), 0.05)
+        << i;
+}
+
 // vision-cam: the rendered cameras' ball and hole arrive as minigolf-vision/1 datagrams; the
 // frames it wrote, replayed without rendering, give the same positions.
 TEST(VisionCliDisplay, VisionCamPublishesWhatItSeesAndReplaysItsFrames) {
@@ -301,6 +342,76 @@ TEST(VisionCliDisplay, VisionCamPublishesWhatItSeesAndReplaysItsFrames) {
   for (std::size_t k = 0; k < a.size(); ++k) {
     EXPECT_EQ(b[k].ball, a[k].ball);
     EXPECT_EQ(b[k].hole, a[k].hole);
+  }
+}
+
+// vision-cam --video: the pairs a rendered run wrote, made into one MJPG video per camera by
+// cv::VideoWriter, give the same ball and hole within millimetres (JPEG's loss) as the live run.
+TEST(VisionCliDisplay, VisionCamReadsOneVideoPerCamera) {
+  MG_NEED_DISPLAY();
+  const auto dir = viz::testing::temp_dir("vision_video");
+  std::string small = read_text_file(data_dir() / "rigs" / "stereo.yaml");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"width: 640", "width: 320"},
+                                 {"height: 480", "height: 240"}})
+    for (auto at = small.find(from); at != std::string::npos; at = small.find(from))
+      small.replace(at, from.size(), to);
+  std::ofstream(dir / "small.yaml") << small;
+  const std::string rig = (dir / "small.yaml").string();
+  perception::UdpReceiver rx("127.0.0.1", 0);
+  const auto receive = [&rx] {
+    std::vector<perception::VisionMessage> got;
+    std::array<char, 600> buf{};
+    while (auto n = rx.receive(buf))
+      got.push_back(perception::parse_vision_message(std::string_view(buf.data(), *n), {}).message);
+    return got;
+  };
+  const std::string to = " --fast --duration 0.1 --to 127.0.0.1:" + std::to_string(rx.port());
+  const auto live = cli::testing::run_minigolf("vision-cam --rig " + rig + to + " --frames " +
+                                               (dir / "frames").string());
+  ASSERT_EQ(live.exit_code, 0) << live.err;
+  const auto a = receive();
+  ASSERT_EQ(a.size(), 6u) << live.out;
+  std::string videos;
+  for (const std::string camera : {"left", "right"}) {
+    const auto path = dir / (camera + ".avi");
+    cv::VideoWriter writer(path.string(), cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), 60.0,
+                           cv::Size(320, 240));
+    ASSERT_TRUE(writer.isOpened()) << "OpenCV cannot write MJPG AVI";
+    for (int k = 0; k < 6; ++k) {
+      const viz::Image image =
+          viz::read_png(dir / "frames" / fmt::format("frame-{:05d}-{}.png", k, camera));
+      cv::Mat bgr(image.height, image.width, CV_8UC3);
+      for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+          const std::uint8_t* p = image.pixel(x, y);
+          bgr.at<cv::Vec3b>(y, x) = cv::Vec3b(p[2], p[1], p[0]);
+        }
+      writer.write(bgr);
+    }
+    writer.release();
+    videos += (videos.empty() ? "" : ",") + path.string();
+  }
+  const auto played =
+      cli::testing::run_minigolf("vision-cam --rig " + rig + to + " --video " + videos);
+  ASSERT_EQ(played.exit_code, 0) << played.err;
+  EXPECT_NE(played.out.find("from 6 stereo frames"), std::string::npos) << played.out;
+  const auto b = receive();
+  ASSERT_EQ(b.size(), a.size()) << played.out;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(b[k].ball[static_cast<std::size_t>(i)], a[k].ball[static_cast<std::size_t>(i)],
+                  0.002);
+      EXPECT_NEAR(b[k].hole[static_cast<std::size_t>(i)], a[k].hole[static_cast<std::size_t>(i)],
+                  0.003);
+    }
+  // One file, a missing one, with --replay: one line, exit 2.
+  for (const std::string& args :
+       {" --video " + (dir / "left.avi").string(),
+        " --video " + (dir / "left.avi").string() + ",/no/such.avi",
+        " --video " + videos + " --replay " + (dir / "frames").string()}) {
+    const auto r = cli::testing::run_minigolf("vision-cam --rig " + rig + to + args);
+    EXPECT_EQ(r.exit_code, 2) << args << r.err;
+    EXPECT_EQ(cli::testing::count_lines(r.err), 1) << args << r.err;
   }
 }
 
