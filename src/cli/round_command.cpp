@@ -110,19 +110,23 @@ void run_plant_compare(const Args& a) {
   if (a.courses.size() != 1) throw InputError("--plants: one course");
   if (a.no_revise) throw InputError("--no-revise: not with --plants (it compares both)");
   const game::Course course = game::load_course(a.courses[0]);
-  game::RoundOptions base = round_options(a);
-  if (!a.out.empty()) check_output_file(a.out);
-  const auto config = system::load_config(a.system.config, "", a.system.hitting_model);
   std::vector<std::pair<std::string, plant::Plant>> worlds;
   if (!a.system.plant.empty()) worlds.emplace_back(a.system.plant, load_plant_arg(a.system.plant));
   for (int k = 0; k < a.plants; ++k) {
     const std::uint64_t seed = a.plant_seed + static_cast<std::uint64_t>(k);
     worlds.emplace_back(fmt::format("`plant random --seed {}`", seed), plant::random_plant(seed));
   }
+  // Every world's options before its first round (the cameras must see each world's lanes).
+  std::vector<game::RoundOptions> options;
+  for (const auto& world : worlds) options.push_back(round_options(a, {course}, world.second));
+  if (!a.out.empty()) check_output_file(a.out);
+  const auto config = system::load_config(a.system.config, "", a.system.hitting_model);
   const int rounds = static_cast<int>(worlds.size()) * 3 * a.seeds;
   Progress progress("play --compare --plants", rounds);
   std::vector<game::PlantRounds> all;
-  for (const auto& [name, plant] : worlds) {
+  for (std::size_t w = 0; w < worlds.size(); ++w) {
+    const auto& [name, plant] = worlds[w];
+    game::RoundOptions& base = options[w];
     const int before = static_cast<int>(all.size()) * 3 * a.seeds;
     game::PlantRounds p;
     p.plant = name;
