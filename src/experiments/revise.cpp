@@ -49,6 +49,7 @@ bool BeliefReviser::observe(const field::Situation& situation, double angle, dou
     return false;  // nothing rolled long enough to fit yet
   }
   belief_ = std::move(id.belief);
+  previous_ = std::move(current_);
   current_ = system_in_belief(start_, belief_.estimate);
   ++revisions_;
   last_cpu_ = cpu_seconds() - t0;

@@ -51,6 +51,9 @@ class BeliefReviser {
   std::vector<IdentifyHit> hits_;
   belief::Belief belief_;
   std::unique_ptr<system::System> current_;
+  /// The system before the last revision, alive until the next one: the caller's data of it
+  /// (its mjData, its cameras) is replaced after `observe` returns, not before.
+  std::unique_ptr<system::System> previous_;
   int revisions_ = 0;
   double last_cpu_ = 0.0, max_cpu_ = 0.0;
 };
