@@ -10,6 +10,8 @@
 #include <variant>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "belief/path_fit.hpp"
 #include "field/field.hpp"
 

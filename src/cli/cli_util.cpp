@@ -180,4 +180,12 @@ nlohmann::json plant_json(const plant::Plant& plant) {
   return {{"path", plant.source}, {"hash", plant.hash}};
 }
 
+std::filesystem::path frames_dir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (!std::filesystem::is_directory(dir, ec))
+    throw InputError(fmt::format("--frames: '{}': cannot make this folder", dir));
+  return dir;
+}
+
 }  // namespace mg::cli

@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -135,5 +136,8 @@ inline void add_system_options(CLI::App* cmd, SystemArgs& a) {
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
 }
+
+/// The folder `dir` for --frames, made when missing. Throws InputError naming it.
+std::filesystem::path frames_dir(const std::string& dir);
 
 }  // namespace mg::cli

@@ -19,6 +19,7 @@ void add_plant_commands(CLI::App& app);      // plant random | show
 void add_adaptation_command(CLI::App& app);  // study adaptation (after add_study_commands)
 void add_round_command(CLI::App& app);       // play
 void add_identify_command(CLI::App& app);    // identify
-void add_camera_commands(CLI::App& app);     // vision calibrate | vision measure | vision-cam
+void add_camera_commands(CLI::App& app);     // vision calibrate | vision measure
+void add_vision_cam_command(CLI::App& app);  // vision-cam
 
 }  // namespace mg::cli

@@ -26,6 +26,7 @@ int run(int argc, char** argv) {
   mg::cli::add_ds_commands(app);
   mg::cli::add_vision_commands(app);
   mg::cli::add_camera_commands(app);
+  mg::cli::add_vision_cam_command(app);
   mg::cli::add_study_commands(app);
   mg::cli::add_console_command(app);
   mg::cli::add_play_commands(app);

@@ -31,6 +31,18 @@ std::unique_ptr<BeliefReviser> reviser_for(const system::System& system,
                                          derive_seed(options.seed, 71));
 }
 
+/// Situation `i`'s putt: the arm hits (angle `a`, club speed `v`) under the options' torque noise
+/// (the situation's own stream), its ball path recorded for the labels.
+control::FullPuttResult play_putt(const system::System& sys, system::SystemData& data,
+                                  const field::Situation& s, double a, double v,
+                                  const EvaluateOptions& options, int i) {
+  control::FullPuttOptions po;
+  po.record_interval = 0.005;
+  po.torque_noise = options.torque_noise;
+  po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
+  return system::arm_hit(sys, data, s, a, v, po);
+}
+
 /// The evaluation's totals, and the belief the learned model is to be played in.
 void finish(LearningEvaluation& out, const system::System& last, const BeliefReviser* reviser) {
   Evaluation& e = out.evaluation;
@@ -102,11 +114,7 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
     r.in_envelope = system::hit_reachable(*sys, a, v);
     int added = 0;
     if (r.in_envelope) {
-      control::FullPuttOptions po;
-      po.record_interval = 0.005;
-      po.torque_noise = options.torque_noise;
-      po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-      control::FullPuttResult p = system::arm_hit(*sys, *data, s, a, v, po);
+      control::FullPuttResult p = play_putt(*sys, *data, s, a, v, options, i);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       putts.push_back(selfteach::record_putt(s, a, v, p));
       if (reviser && reviser->observe(s, a, v, p)) {
@@ -194,11 +202,7 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
     r.in_envelope = system::hit_reachable(*sys, a, v);
     int added = 0;
     if (r.in_envelope) {
-      control::FullPuttOptions po;
-      po.record_interval = 0.005;
-      po.torque_noise = options.torque_noise;
-      po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-      control::FullPuttResult p = system::arm_hit(*sys, *data, s, a, v, po);
+      control::FullPuttResult p = play_putt(*sys, *data, s, a, v, options, i);
       r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
       if (reviser && reviser->observe(s, a, v, p)) {
         // Later putts and labels are read in the revised belief (the data appended stay).

@@ -1,5 +1,5 @@
 #pragma once
-/// Published Barrett WAM 7-DoF parameters (see shared/design/PHYSICS.md for sources) and our own
+/// Barrett WAM 7-DoF parameters from the published DH table and inertia (docs/robot.md) and our own
 /// picks (armature, damping, velocity limits, golf club), in one place.
 ///
 /// Frames: DH link frame i (Spong convention, i = 1..7) is attached to link i; joint i turns about
