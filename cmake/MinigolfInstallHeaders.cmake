@@ -11,7 +11,10 @@
 # outside program cannot come to depend on it.
 #
 # Expects: MINIGOLF_SOURCE_DIR, MINIGOLF_STAGING_DIR (a scratch folder in the build tree) and
-# MINIGOLF_SUBSYSTEMS (a list).
+# MINIGOLF_SUBSYSTEMS (a list). Each install prefix stages in its own subfolder, so two installs
+# from one build tree running at once (the install tests) never remove each other's files.
+string(MD5 _mg_prefix_key "${CMAKE_INSTALL_PREFIX}")
+set(MINIGOLF_STAGING_DIR "${MINIGOLF_STAGING_DIR}/${_mg_prefix_key}")
 list(JOIN MINIGOLF_SUBSYSTEMS "|" _mg_alternatives)
 set(_mg_pattern "#include \"(${_mg_alternatives})/")
 file(REMOVE_RECURSE "${MINIGOLF_STAGING_DIR}")
