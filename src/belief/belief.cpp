@@ -48,6 +48,9 @@ plant::Plant read_std(const YAML::Node& node, const std::string& source) {
   field::MapReader r(node, source, "std");
   plant::read_plant_sections(r, s);
   r.finish();
+  // A bump is a shape put into the belief, not a number estimated with a spread.
+  if (!s.field.bumps.empty())
+    throw InputError(fmt::format("{}: std.field.bumps: bumps have no standard deviation", source));
   return s;
 }
 
@@ -214,6 +217,12 @@ nlohmann::json belief_to_json(const Belief& b, const field::Field& field) {
       {"hole_offset", {e.field.hole_offset[0], e.field.hole_offset[1]}},
       {"sliding_friction", plant::true_sliding_friction(field, e)},
   };
+  if (!e.field.bumps.empty()) {
+    nlohmann::json bumps = nlohmann::json::array();
+    for (const auto& bump : e.field.bumps)
+      bumps.push_back({{"center", bump.center}, {"height", bump.height}, {"sigma", bump.sigma}});
+    j["field"]["bumps"] = bumps;
+  }
   j["arm"] = {{"launch_angle_bias", e.arm.launch_angle_bias},
               {"club_speed_scale", e.arm.club_speed_scale}};
   j["std"] = {

@@ -41,6 +41,27 @@ struct FitPath {
   RollState start;
 };
 
+/// Appends the residuals of run `run` of a fitted path (its model positions filled), each with
+/// the model's direction of motion there (from its neighbouring model positions).
+void append_residuals(const FitPath& f, int run, std::vector<SampleResidual>& out) {
+  const std::size_t n = f.times.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    SampleResidual r;
+    r.path = static_cast<int>(f.index);
+    r.run = run;
+    r.t = f.times[i];
+    r.x = f.obs[2 * i];
+    r.y = f.obs[2 * i + 1];
+    r.dx = f.obs[2 * i] - f.model[2 * i];
+    r.dy = f.obs[2 * i + 1] - f.model[2 * i + 1];
+    const std::size_t a = i > 0 ? i - 1 : 0, b = i + 1 < n ? i + 1 : i;
+    const double hx = f.model[2 * b] - f.model[2 * a], hy = f.model[2 * b + 1] - f.model[2 * a + 1];
+    const double norm = std::hypot(hx, hy);
+    if (norm > 0.0) r.heading = {hx / norm, hy / norm};
+    out.push_back(r);
+  }
+}
+
 /// Parameters: rho, sx, sy, then x, y, vx, vy, W per path.
 constexpr int kGlobals = 3;
 constexpr int kLocals = 5;
@@ -384,13 +405,16 @@ GreenEstimate fit_green(const field::Field& surveyed, const std::vector<Observed
   est.samples_used = static_cast<int>(nobs / 2);
   data_cost(surveyed, fit, p);
   double total = 0.0;
+  int run = 0;
   for (std::size_t k = 0; k < fit.size(); ++k) {
     const FitPath& f = fit[k];
     double sum = 0.0;
     for (std::size_t i = 0; i < f.obs.size(); ++i)
       sum += (f.model[i] - f.obs[i]) * (f.model[i] - f.obs[i]);
     total += sum;
-    if (k > 0 && fit[k - 1].index == f.index) continue;  // a later run of the same path
+    run = k > 0 && fit[k - 1].index == f.index ? run + 1 : 0;
+    append_residuals(f, run, est.residuals);
+    if (run > 0) continue;  // a later run of the same path
     PathFit& pf = est.paths[f.index];
     pf.start = local_state(p, k);
     pf.rms_residual = std::sqrt(sum / static_cast<double>(f.obs.size()));

@@ -82,6 +82,15 @@ struct PathFit {
   double rms_residual = 0.0;  ///< [m] per axis
 };
 
+/// One fitted sample: where the ball was seen, and the seen position minus the fitted model's.
+struct SampleResidual {
+  int path = 0;                      ///< index into the fitted paths
+  int run = 0;                       ///< the path's rolling run (0: the first; see rolling_spans)
+  double t = 0.0, x = 0.0, y = 0.0;  ///< [s], [m] as perceived
+  double dx = 0.0, dy = 0.0;         ///< [m] perceived - model
+  std::array<double, 2> heading{1.0, 0.0};  ///< the model ball's direction of motion
+};
+
 struct GreenEstimate {
   double rolling_resistance = 0.0;      ///< rho [-] (absolute)
   std::array<double, 2> extra_slope{};  ///< (dz/dx, dz/dy) [-] on top of the surveyed surface
@@ -91,6 +100,9 @@ struct GreenEstimate {
   double rms_residual = 0.0;   ///< [m] per axis, over the fitted samples
   int iterations = 0;          ///< Levenberg-Marquardt steps taken
   std::vector<PathFit> paths;  ///< one per input path
+  /// Every fitted sample's residual, path by path and run by run in time order
+  /// (belief/residuals.hpp reads them for what the model leaves out).
+  std::vector<SampleResidual> residuals;
 };
 
 /// The green's unknowns.

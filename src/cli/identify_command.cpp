@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "belief/belief.hpp"
+#include "belief/residuals.hpp"
 #include "cli/cli_util.hpp"
 #include "cli/commands.hpp"
 #include "cli/perception_args.hpp"
@@ -95,6 +96,13 @@ void print_table(const system::System& truth, const std::vector<IdentifyHit>& hi
       id.green.paths_used, hits.size(), id.green.samples_used, 1e3 * id.green.rms_residual,
       id.green.iterations, id.arm.speed_observations, id.arm.angle_observations, 1e3 * id.fit_cpu,
       1e3 * id.predict_cpu);
+  const belief::ResidualSummary r = belief::summarize_residuals(id.green);
+  fmt::print(
+      "residual: {:.2f} mm along the paths, {:.2f} mm across, lag-1 autocorrelation {:.2f}: {}\n",
+      1e3 * r.rms_along, 1e3 * r.rms_across, r.lag1,
+      r.structured ? "structured, the green differs from the survey in ways one rolling "
+                     "resistance and one tilt cannot express (docs/belief.md)"
+                   : "white, as vision error");
   if (b.putts == 1 || id.arm.angle_observations < 2)
     fmt::print(
         "note: one putt leaves the launch bias against a cross slope and the arm's std open; "
@@ -163,7 +171,14 @@ void add_identify_command(CLI::App& app) {
         experiments::identify_belief(config, surveyed, hits, hits.size(), prior);
     if (!a->out.empty()) write_file_atomic(a->out, belief::belief_to_yaml(id.belief));
     if (a->json) {
-      fmt::print("{}\n", belief::belief_to_json(id.belief, surveyed).dump(2));
+      nlohmann::json j = belief::belief_to_json(id.belief, surveyed);
+      const belief::ResidualSummary r = belief::summarize_residuals(id.green);
+      j["residual"] = {{"samples", r.samples},
+                       {"rms_along", r.rms_along},
+                       {"rms_across", r.rms_across},
+                       {"lag1", r.lag1},
+                       {"structured", r.structured}};
+      fmt::print("{}\n", j.dump(2));
       return;
     }
     print_table(truth, hits, id, prior, a->plant);

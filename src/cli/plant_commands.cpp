@@ -60,6 +60,9 @@ void add_plant_commands(CLI::App& app) {
     fmt::print("  extra slope ({:.5f}, {:.5f}), hole offset ({:.4f}, {:.4f}) m\n",
                p.field.extra_slope[0], p.field.extra_slope[1], p.field.hole_offset[0],
                p.field.hole_offset[1]);
+    for (const auto& b : p.field.bumps)
+      fmt::print("  bump of {:+.4f} m at ({:.3f}, {:.3f}) m, widths ({:.3f}, {:.3f}) m\n", b.height,
+                 b.center[0], b.center[1], b.sigma[0], b.sigma[1]);
     fmt::print(
         "  launch angle bias {:.5f} rad, club speed x{:.4f}, club restitution x{:.4f}, torque "
         "noise {}\n",

@@ -205,7 +205,14 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
   std::vector<belief::ObservedPath> paths;
   for (std::size_t k = 0; k < n; ++k) paths.push_back(hits[k].path);
   double t0 = cpu_seconds();
-  id.green = belief::fit_green(surveyed, paths, green_prior(surveyed, prior), 0.0, every_run);
+  // A prior's bumps (a spatial correction) are part of the shape the green is fitted on.
+  field::Field shape = surveyed;
+  if (prior && !prior->estimate.field.bumps.empty()) {
+    plant::Plant bumps;
+    bumps.field.bumps = prior->estimate.field.bumps;
+    shape = plant::true_field(surveyed, bumps);
+  }
+  id.green = belief::fit_green(shape, paths, green_prior(surveyed, prior), 0.0, every_run);
   id.fit_cpu += cpu_seconds() - t0;
 
   belief::Belief& b = id.belief;

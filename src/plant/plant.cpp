@@ -35,7 +35,8 @@ double uniform(Rng& rng, double lo, double hi) {
 
 bool Plant::field_changed() const {
   return field.rolling_resistance || field.rolling_resistance_scale || field.sliding_friction ||
-         field.sliding_friction_scale || field.extra_slope[0] != 0.0 || field.extra_slope[1] != 0.0;
+         field.sliding_friction_scale || field.extra_slope[0] != 0.0 ||
+         field.extra_slope[1] != 0.0 || !field.bumps.empty();
 }
 
 bool Plant::arm_changed() const {
@@ -74,6 +75,18 @@ void Plant::validate() const {
     check_range(s, fmt::format("field.hole_offset[{}]", i),
                 f.hole_offset[static_cast<std::size_t>(i)], -0.2, 0.2, " m");
   }
+  if (f.bumps.size() > kMaxPlantBumps)
+    throw InputError(fmt::format("{}: field.bumps: expected at most {} bumps, got {}", s,
+                                 kMaxPlantBumps, f.bumps.size()));
+  for (std::size_t i = 0; i < f.bumps.size(); ++i) {
+    const auto& b = f.bumps[i];
+    for (std::size_t k = 0; k < 2; ++k) {
+      check_range(s, fmt::format("field.bumps[{}].center[{}]", i, k), b.center[k], -100.0, 100.0,
+                  " m");
+      check_range(s, fmt::format("field.bumps[{}].sigma[{}]", i, k), b.sigma[k], 0.02, 10.0, " m");
+    }
+    check_range(s, fmt::format("field.bumps[{}].height", i), b.height, -0.05, 0.05, " m");
+  }
   check_range(s, "arm.launch_angle_bias", arm.launch_angle_bias, -0.1, 0.1, " rad");
   check_range(s, "arm.club_speed_scale", arm.club_speed_scale, 0.5, 1.5, "");
   check_range(s, "arm.club_restitution_scale", arm.club_restitution_scale, 0.5, 1.2, "");
@@ -97,6 +110,21 @@ void read_plant_sections(field::MapReader& r, Plant& p) {
       t.sliding_friction_scale = f.number("sliding_friction_scale");
     t.extra_slope = f.numbers<2>("extra_slope", t.extra_slope);
     t.hole_offset = f.numbers<2>("hole_offset", t.hole_offset);
+    if (f.has("bumps")) {
+      const YAML::Node list = f.require("bumps");
+      if (!list.IsSequence()) f.fail(f.full("bumps"), "expected a list of bumps");
+      if (list.size() > kMaxPlantBumps)
+        f.fail(f.full("bumps"), fmt::format("expected at most {} bumps", kMaxPlantBumps));
+      for (std::size_t i = 0; i < list.size(); ++i) {
+        field::MapReader b(list[i], f.source(), fmt::format("{}[{}]", f.full("bumps"), i));
+        field::BumpTerm bump;
+        bump.center = b.numbers<2>("center");
+        bump.height = b.number("height");
+        bump.sigma = b.numbers<2>("sigma");
+        b.finish();
+        t.bumps.push_back(bump);
+      }
+    }
     f.finish();
   }
   if (r.has("arm")) {
@@ -188,6 +216,7 @@ field::Field true_field(const field::Field& belief, const Plant& plant) {
     tilt.slope_y = s[1];
     f.surface.terms.emplace_back(tilt);
   }
+  for (const auto& bump : plant.field.bumps) f.surface.terms.emplace_back(bump);
   f.validate();
   return f;
 }
@@ -228,6 +257,13 @@ std::string plant_to_yaml(const Plant& p) {
   if (f.hole_offset[0] != 0.0 || f.hole_offset[1] != 0.0)
     field +=
         fmt::format("  hole_offset: [{}, {}]  # m\n", num(f.hole_offset[0]), num(f.hole_offset[1]));
+  if (!f.bumps.empty()) {
+    field += "  bumps:  # m\n";
+    for (const auto& b : f.bumps)
+      field +=
+          fmt::format("    - {{center: [{}, {}], height: {}, sigma: [{}, {}]}}\n", num(b.center[0]),
+                      num(b.center[1]), num(b.height), num(b.sigma[0]), num(b.sigma[1]));
+  }
   const auto& a = p.arm;
   if (a.launch_angle_bias != 0.0)
     arm += "  launch_angle_bias: " + num(a.launch_angle_bias) + "  # rad\n";

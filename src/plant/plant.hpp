@@ -11,7 +11,9 @@
 /// File (YAML, `format_version: 1` required, every other key optional, unknown keys and keys
 /// given twice are an error; an empty file is an error, not the identity):
 ///   field:      rolling_resistance | rolling_resistance_scale, sliding_friction |
-///               sliding_friction_scale, extra_slope [dz/dx, dz/dy], hole_offset [m, m]
+///               sliding_friction_scale, extra_slope [dz/dx, dz/dy], hole_offset [m, m],
+///               bumps (a list of {center: [x, y], height, sigma: [sx, sy]} [m]: Gaussian
+///               bumps and dips of the real green that the survey missed)
 ///   arm:        launch_angle_bias [rad], club_speed_scale, club_restitution_scale,
 ///               joint_friction [7 x N m], torque_noise [fraction of the torque limits]
 ///   perception: noise [m, std per axis], latency [s]
@@ -21,6 +23,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "field/field.hpp"
 
@@ -36,7 +39,14 @@ struct FieldTruth {
   std::optional<double> sliding_friction_scale;    ///< or: the field's times this
   std::array<double, 2> extra_slope{0.0, 0.0};     ///< dz/dx, dz/dy added to the whole surface
   std::array<double, 2> hole_offset{0.0, 0.0};     ///< [m] real hole - where the robot sees it
+  /// Unsurveyed bumps (negative height: dips) added to the surface. No belief key estimates
+  /// them: a world with bumps is one the robot's model cannot express (docs/belief.md, "Beyond
+  /// the plant's keys").
+  std::vector<field::BumpTerm> bumps;
 };
+
+/// At most this many bumps in a plant.
+inline constexpr std::size_t kMaxPlantBumps = 32;
 
 /// Physical truth of the arm and club.
 struct ArmTruth {

@@ -123,6 +123,20 @@ TEST(Belief, TheBelievedFieldIsTheSurveyWithTheEstimate) {
   EXPECT_NEAR(grad[1], -0.0015, 1e-15);
 }
 
+// A belief may hold a shape beyond the keys (a spatial correction): its lane has it, its JSON
+// shows it.
+TEST(Belief, BumpsInABeliefShapeItsLane) {
+  const field::Field f = field::load_field("flat");
+  const Belief b = parse_belief(
+      "format_version: 1\nfield: {bumps: [{center: [1, 0], height: 0.002, sigma: [0.2, 0.2]}]}\n",
+      "b.yaml");
+  EXPECT_NEAR(believed_field(f, b).height(1.0, 0.0) - f.height(1.0, 0.0), 0.002, 1e-12);
+  const auto j = belief_to_json(b, f);
+  ASSERT_EQ(j["field"]["bumps"].size(), 1u);
+  EXPECT_DOUBLE_EQ(j["field"]["bumps"][0]["height"].get<double>(), 0.002);
+  EXPECT_EQ(parse_belief(belief_to_yaml(b), "c.yaml").estimate.field.bumps.size(), 1u);
+}
+
 // Every bad file is one line naming the file and the key.
 TEST(Belief, BadFilesNameTheFileAndTheKey) {
   const auto one_line = [](const std::string& e) { return e.find('\n') == std::string::npos; };
@@ -143,6 +157,8 @@ TEST(Belief, BadFilesNameTheFileAndTheKey) {
       {"putts: [1, 2]\n", "b.yaml: putts"},
       {"- 1\n- 2\n", "b.yaml"},
       {"field: {extra_slope: [0, 0.001]\n", "b.yaml: malformed YAML"},
+      {"std: {field: {bumps: [{center: [1, 0], height: 0.001, sigma: [0.2, 0.2]}]}}\n",
+       "b.yaml: std.field.bumps: bumps have no standard deviation"},
   };
   for (const auto& [yaml, expected] : cases) {
     const std::string e = error_of(yaml);

@@ -44,6 +44,10 @@ TEST(IdentifyCommand, WritesABeliefAndTakesItAsAPrior) {
   EXPECT_GT(j["std"]["field"]["rolling_resistance"].get<double>(), 0.0);
   EXPECT_GT(j["std"]["arm"]["club_speed_scale"].get<double>(), 0.0);
   EXPECT_EQ(j["field"]["hole_offset"], nlohmann::json::array({0.0, 0.0}));  // not identified
+  // The stand-in's green is one grass and one tilt: what the fit leaves is its 0.5 mm vision error.
+  EXPECT_GT(j["residual"]["samples"].get<int>(), 100);
+  EXPECT_NEAR(j["residual"]["rms_across"].get<double>(), 0.0005, 0.0002);
+  EXPECT_FALSE(j["residual"]["structured"].get<bool>());
   const std::string text = read(out);
   EXPECT_NE(text.find("format_version: 1"), std::string::npos) << text;
   EXPECT_NE(text.find("std:"), std::string::npos) << text;
@@ -55,6 +59,7 @@ TEST(IdentifyCommand, WritesABeliefAndTakesItAsAPrior) {
   EXPECT_NE(again.out.find("belief after 4 putts"), std::string::npos) << again.out;
   EXPECT_NE(again.out.find("hole_offset"), std::string::npos) << again.out;
   EXPECT_NE(again.out.find("not identified"), std::string::npos) << again.out;
+  EXPECT_NE(again.out.find("residual:"), std::string::npos) << again.out;
   fs::remove(out);
 }
 

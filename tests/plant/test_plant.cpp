@@ -161,6 +161,54 @@ TEST(Plant, TheTrueFieldAddsTheTiltAndTheGrass) {
   EXPECT_DOUBLE_EQ(true_field(belief, p).rolling_resistance, 0.2);
 }
 
+// Bumps the survey missed: read, checked, written back, and added to the true lane's surface.
+TEST(Plant, BumpsAreReadCheckedWrittenAndAddedToTheSurface) {
+  const Plant p = parse_plant(
+      "format_version: 1\n"
+      "field:\n"
+      "  bumps:\n"
+      "    - {center: [1.2, 0.1], height: 0.002, sigma: [0.3, 0.2]}\n"
+      "    - {center: [0.6, -0.3], height: -0.001, sigma: [0.2, 0.2]}\n",
+      "p.yaml");
+  ASSERT_EQ(p.field.bumps.size(), 2u);
+  EXPECT_TRUE(p.field_changed());
+  EXPECT_FALSE(p.empty());
+  EXPECT_EQ(plant_to_yaml(parse_plant(plant_to_yaml(p), "back")), plant_to_yaml(p));
+  const field::Field belief = field::load_field("flat");
+  const field::Field truth = true_field(belief, p);
+  EXPECT_NEAR(truth.height(1.2, 0.1) - belief.height(1.2, 0.1),
+              0.002 + -0.001 * std::exp(-0.5 * (0.36 / 0.04 + 0.16 / 0.04)), 1e-12);
+  EXPECT_NEAR(truth.height(2.5, 0.5) - belief.height(2.5, 0.5), 0.0, 1e-6);
+
+  EXPECT_NE(error_of("format_version: 1\nfield: {bumps: 3}\n").find("field.bumps: expected a list"),
+            std::string::npos);
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "field: {bumps: [{center: [1, 0], height: 0.2, sigma: [0.3, 0.3]}]}\n")
+                .find("field.bumps[0].height"),
+            std::string::npos);
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "field: {bumps: [{center: [1, 0], height: 0.001, sigma: [0.3, 0]}]}\n")
+                .find("field.bumps[0].sigma[1]"),
+            std::string::npos);
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "field: {bumps: [{center: [1, nan], height: 0.001, sigma: [0.3, 0.3]}]}\n")
+                .find("field.bumps[0].center[1]"),
+            std::string::npos);
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "field: {bumps: [{center: [1, 0], height: 0.001, sigma: [0.3, 0.3], "
+                     "width: 2}]}\n")
+                .find("width: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of("format_version: 1\n"
+                     "field: {bumps: [{height: 0.001, sigma: [0.3, 0.3]}]}\n")
+                .find("center"),
+            std::string::npos);
+  std::string many = "format_version: 1\nfield:\n  bumps:\n";
+  for (std::size_t i = 0; i <= kMaxPlantBumps; ++i)
+    many += "    - {center: [1, 0], height: 0.001, sigma: [0.3, 0.3]}\n";
+  EXPECT_NE(error_of(many).find("at most"), std::string::npos);
+}
+
 TEST(Plant, ContentHashIsFnv1a) {
   EXPECT_EQ(content_hash(""), "cbf29ce484222325");
   EXPECT_EQ(content_hash("a"), "af63dc4c8601ec8c");  // the published FNV-1a 64 test vector
