@@ -36,7 +36,8 @@ plant::Plant with_bumps(plant::Plant plant, const field::Field& field, std::uint
   const auto& b = field.bounds;
   for (int i = 0; i < 3; ++i) {
     field::BumpTerm bump;
-    bump.center = {uniform(rng, field.tee[0] + 0.4, b[1] - 0.2), uniform(rng, b[2] + 0.2, b[3] - 0.2)};
+    bump.center = {uniform(rng, field.tee[0] + 0.4, b[1] - 0.2),
+                   uniform(rng, b[2] + 0.2, b[3] - 0.2)};
     const double height = uniform(rng, 0.001, 0.003);
     bump.height = rng() % 2 ? height : -height;
     const double sigma = uniform(rng, 0.15, 0.35);
@@ -76,7 +77,7 @@ int main(int argc, char** argv) {
           write_file_atomic(dir + "/" + name + "-bumps-" + std::to_string(k) + ".yaml",
                             plant::plant_to_yaml(plant));
       }
-      const std::string label = p == 0           ? std::string("stand-in")
+      const std::string label = p == 0       ? std::string("stand-in")
                                 : p > plants ? "random " + std::to_string(k) + " + bumps"
                                              : "random " + std::to_string(k);
       try {
@@ -85,8 +86,8 @@ int main(int argc, char** argv) {
             experiments::plan_identification(truth, putts, "", static_cast<std::uint64_t>(k));
         experiments::play_identification(truth, hits, plant.perception.noise,
                                          static_cast<std::uint64_t>(k));
-        const auto id = experiments::identify_belief(config, surveyed, hits, hits.size(),
-                                                     std::nullopt, true);
+        const auto id =
+            experiments::identify_belief(config, surveyed, hits, hits.size(), std::nullopt, true);
         const belief::ResidualSummary s = belief::summarize_residuals(id.green);
         const double rho = plant::true_rolling_resistance(surveyed, plant);
         std::printf("| %s | %s | %d | %.2f | %.2f | %.2f | %s | %.2f | %.2f |\n", name.c_str(),

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "belief/shape_fit.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "field/situations.hpp"
@@ -197,6 +198,65 @@ std::array<double, 2> launch_window(const field::Field& field, const belief::Obs
   return {kFrom, to};
 }
 
+namespace {
+
+/// The lane the green is fitted on: the survey with the prior's bumps (a spatial correction).
+field::Field prior_shape(const field::Field& surveyed, const std::optional<belief::Belief>& prior) {
+  if (!prior || prior->estimate.field.bumps.empty()) return surveyed;
+  return belief::with_bumps(surveyed, prior->estimate.field.bumps);
+}
+
+/// The green's keys of `b` (rho absolute, the tilt, their std) and the vision's noise from `green`.
+void apply_green(const belief::GreenEstimate& green, belief::Belief& b) {
+  b.estimate.field.rolling_resistance = green.rolling_resistance;
+  b.estimate.field.rolling_resistance_scale.reset();
+  b.estimate.field.extra_slope = green.extra_slope;
+  b.std.field.rolling_resistance_scale.reset();
+  b.std.field.rolling_resistance = file_std(green.std[0]);
+  if (*b.std.field.rolling_resistance == 0.0) b.std.field.rolling_resistance.reset();
+  b.std.field.extra_slope = {file_std(green.std[1]), file_std(green.std[2])};
+  // The vision's error per axis: the paths' residual (the model's own error is ~0.01 mm).
+  b.estimate.perception.noise = std::min(green.rms_residual, 0.05);
+  b.std.perception.noise =
+      file_std(green.rms_residual / std::sqrt(2.0 * std::max(1, green.samples_used)));
+}
+
+}  // namespace
+
+belief::ShapeEstimate correct_shape(Identification& id, const field::Field& surveyed,
+                                    const std::vector<IdentifyHit>& hits, std::size_t n,
+                                    const std::optional<belief::Belief>& prior,
+                                    const belief::ShapeOptions& options) {
+  n = std::min(n, hits.size());
+  std::vector<belief::ObservedPath> paths;
+  for (std::size_t k = 0; k < n; ++k) paths.push_back(hits[k].path);
+  const double t0 = cpu_seconds();
+  belief::ShapeEstimate shape =
+      belief::fit_shape(prior_shape(surveyed, prior), paths, green_prior(surveyed, prior), options);
+  id.fit_cpu += cpu_seconds() - t0;
+  // The new bumps add to the prior's; a bump of the same place and width is one (its heights
+  // summed), so shape fits repeated on the same grid do not multiply the file's bumps.
+  auto& bumps = id.belief.estimate.field.bumps;
+  for (const field::BumpTerm& add : shape.bumps) {
+    bool merged = false;
+    for (field::BumpTerm& have : bumps)
+      if (have.center == add.center && have.sigma == add.sigma) {
+        have.height = std::clamp(have.height + add.height, -0.05, 0.05);
+        merged = true;
+      }
+    if (!merged) bumps.push_back(add);
+  }
+  if (bumps.size() > plant::kMaxPlantBumps)
+    throw InputError(fmt::format(
+        "identify: the prior's bumps and the new ones make {}, more than a belief holds ({})",
+        bumps.size(), plant::kMaxPlantBumps));
+  id.green = shape.green;
+  apply_green(shape.green, id.belief);
+  id.belief.estimate.validate();
+  belief::validate_std(id.belief.std, "identify");
+  return shape;
+}
+
 Identification identify_belief(const control::ModuleConfig& config, const field::Field& surveyed,
                                const std::vector<IdentifyHit>& hits, std::size_t n,
                                const std::optional<belief::Belief>& prior, bool every_run) {
@@ -205,14 +265,8 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
   std::vector<belief::ObservedPath> paths;
   for (std::size_t k = 0; k < n; ++k) paths.push_back(hits[k].path);
   double t0 = cpu_seconds();
-  // A prior's bumps (a spatial correction) are part of the shape the green is fitted on.
-  field::Field shape = surveyed;
-  if (prior && !prior->estimate.field.bumps.empty()) {
-    plant::Plant bumps;
-    bumps.field.bumps = prior->estimate.field.bumps;
-    shape = plant::true_field(surveyed, bumps);
-  }
-  id.green = belief::fit_green(shape, paths, green_prior(surveyed, prior), 0.0, every_run);
+  id.green = belief::fit_green(prior_shape(surveyed, prior), paths, green_prior(surveyed, prior),
+                               0.0, every_run);
   id.fit_cpu += cpu_seconds() - t0;
 
   belief::Belief& b = id.belief;
@@ -222,17 +276,7 @@ Identification identify_belief(const control::ModuleConfig& config, const field:
   }
   b.estimate.source.clear();
   b.estimate.hash.clear();
-  b.estimate.field.rolling_resistance = id.green.rolling_resistance;
-  b.estimate.field.rolling_resistance_scale.reset();
-  b.estimate.field.extra_slope = id.green.extra_slope;
-  b.std.field.rolling_resistance_scale.reset();
-  b.std.field.rolling_resistance = file_std(id.green.std[0]);
-  if (*b.std.field.rolling_resistance == 0.0) b.std.field.rolling_resistance.reset();
-  b.std.field.extra_slope = {file_std(id.green.std[1]), file_std(id.green.std[2])};
-  // The vision's error per axis: the paths' residual (the model's own error is ~0.01 mm).
-  b.estimate.perception.noise = std::min(id.green.rms_residual, 0.05);
-  b.std.perception.noise =
-      file_std(id.green.rms_residual / std::sqrt(2.0 * std::max(1, id.green.samples_used)));
+  apply_green(id.green, b);
   b.putts = (prior ? prior->putts : 0) + static_cast<int>(n);
 
   // The robot's own model of each hit: its arm on the lane it now believes in.
