@@ -1,12 +1,11 @@
 // identify --field F [--plant TRUE] [--putts N] [--seed S] [--balls SPEC] [--belief PRIOR]
-//          [--shape] [-o belief.yaml] [--json]
+//          [-o belief.yaml] [--json]
 // The robot identifies the world (docs/belief.md): it plays N informative putts with the arm in
 // the true world (the plant builds it; the estimate never reads it), perceives each ball path
 // with the plant's vision error, and fits its belief: the green (rolling resistance, tilt) from
 // the paths, the arm (club speed scale, launch angle bias) from its measured club speeds and
-// the launch directions it saw against its own model's; with --shape also a grid of bumps where
-// the paths run (a spatial correction). Prints a table, or the belief as JSON; -o writes the
-// belief file.
+// the launch directions it saw against its own model's. Prints a table, or the belief as JSON;
+// -o writes the belief file.
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -118,7 +117,7 @@ void add_identify_command(CLI::App& app) {
     std::string config, hitting_model, plant, balls, prior, out;
     int putts = 5;
     std::uint64_t seed = 1;
-    bool json = false, shape = false;
+    bool json = false;
     PerceptionArgs eyes;
   };
   auto a = std::make_shared<Args>();
@@ -146,9 +145,6 @@ void add_identify_command(CLI::App& app) {
                   "friction kept");
   cmd->add_option("-o,--output", a->out, "Belief YAML file to write");
   cmd->add_flag("--json", a->json, "Print the belief as JSON instead of the table");
-  cmd->add_flag("--shape", a->shape,
-                "Also fit the lane's shape: a grid of bumps where the paths run, for a green "
-                "that one rolling resistance and one tilt do not describe (docs/belief.md)");
   add_perception_options(cmd, a->eyes);
   cmd->callback([a] {
     // Every input before any work: the output, the field, the plant, the prior, the balls.
@@ -171,21 +167,8 @@ void add_identify_command(CLI::App& app) {
     experiments::play_identification(truth, hits, plant.perception.noise, a->seed,
                                      [&bar](int done) { bar.update(done); });
     bar.finish();
-    Identification id = experiments::identify_belief(config, surveyed, hits, hits.size(), prior);
-    std::string shape_line;
-    if (a->shape) {
-      const belief::ResidualSummary before = belief::summarize_residuals(id.green);
-      const belief::ShapeEstimate shape =
-          experiments::correct_shape(id, surveyed, hits, hits.size(), prior);
-      const belief::ResidualSummary after = belief::summarize_residuals(id.green);
-      shape_line = fmt::format(
-          "shape: {} bumps fitted where the paths run; residual {:.2f} -> {:.2f} mm rms, lag-1 "
-          "{:.2f} -> {:.2f}\n",
-          shape.bumps.size(),
-          1e3 * std::hypot(before.rms_along, before.rms_across) / std::sqrt(2.0),
-          1e3 * std::hypot(after.rms_along, after.rms_across) / std::sqrt(2.0), before.lag1,
-          after.lag1);
-    }
+    const Identification id =
+        experiments::identify_belief(config, surveyed, hits, hits.size(), prior);
     if (!a->out.empty()) write_file_atomic(a->out, belief::belief_to_yaml(id.belief));
     if (a->json) {
       nlohmann::json j = belief::belief_to_json(id.belief, surveyed);
@@ -199,7 +182,6 @@ void add_identify_command(CLI::App& app) {
       return;
     }
     print_table(truth, hits, id, prior, a->plant);
-    fmt::print("{}", shape_line);
     if (!a->out.empty()) fmt::print("wrote {}\n", a->out);
   });
 }

@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 
-#include "belief/shape_fit.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "field/situations.hpp"
@@ -203,7 +202,9 @@ namespace {
 /// The lane the green is fitted on: the survey with the prior's bumps (a spatial correction).
 field::Field prior_shape(const field::Field& surveyed, const std::optional<belief::Belief>& prior) {
   if (!prior || prior->estimate.field.bumps.empty()) return surveyed;
-  return belief::with_bumps(surveyed, prior->estimate.field.bumps);
+  plant::Plant bumps;
+  bumps.field.bumps = prior->estimate.field.bumps;
+  return plant::true_field(surveyed, bumps);
 }
 
 /// The green's keys of `b` (rho absolute, the tilt, their std) and the vision's noise from `green`.
@@ -222,40 +223,6 @@ void apply_green(const belief::GreenEstimate& green, belief::Belief& b) {
 }
 
 }  // namespace
-
-belief::ShapeEstimate correct_shape(Identification& id, const field::Field& surveyed,
-                                    const std::vector<IdentifyHit>& hits, std::size_t n,
-                                    const std::optional<belief::Belief>& prior,
-                                    const belief::ShapeOptions& options) {
-  n = std::min(n, hits.size());
-  std::vector<belief::ObservedPath> paths;
-  for (std::size_t k = 0; k < n; ++k) paths.push_back(hits[k].path);
-  const double t0 = cpu_seconds();
-  belief::ShapeEstimate shape =
-      belief::fit_shape(prior_shape(surveyed, prior), paths, green_prior(surveyed, prior), options);
-  id.fit_cpu += cpu_seconds() - t0;
-  // The new bumps add to the prior's; a bump of the same place and width is one (its heights
-  // summed), so shape fits repeated on the same grid do not multiply the file's bumps.
-  auto& bumps = id.belief.estimate.field.bumps;
-  for (const field::BumpTerm& add : shape.bumps) {
-    bool merged = false;
-    for (field::BumpTerm& have : bumps)
-      if (have.center == add.center && have.sigma == add.sigma) {
-        have.height = std::clamp(have.height + add.height, -0.05, 0.05);
-        merged = true;
-      }
-    if (!merged) bumps.push_back(add);
-  }
-  if (bumps.size() > plant::kMaxPlantBumps)
-    throw InputError(fmt::format(
-        "identify: the prior's bumps and the new ones make {}, more than a belief holds ({})",
-        bumps.size(), plant::kMaxPlantBumps));
-  id.green = shape.green;
-  apply_green(shape.green, id.belief);
-  id.belief.estimate.validate();
-  belief::validate_std(id.belief.std, "identify");
-  return shape;
-}
 
 Identification identify_belief(const control::ModuleConfig& config, const field::Field& surveyed,
                                const std::vector<IdentifyHit>& hits, std::size_t n,

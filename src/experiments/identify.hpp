@@ -15,7 +15,6 @@
 #include "belief/arm_fit.hpp"
 #include "belief/belief.hpp"
 #include "belief/path_fit.hpp"
-#include "belief/shape_fit.hpp"
 #include "control/module_config.hpp"
 #include "field/field.hpp"
 #include "system/system.hpp"
@@ -80,16 +79,6 @@ belief::GreenPrior green_prior(const field::Field& surveyed,
 Identification identify_belief(const control::ModuleConfig& config, const field::Field& surveyed,
                                const std::vector<IdentifyHit>& hits, std::size_t n,
                                const std::optional<belief::Belief>& prior, bool every_run = false);
-
-/// A spatial correction of `id` (identify_belief's, from the same first `n` of `hits` and
-/// `prior`): the grid of bumps belief::fit_shape finds where the paths run, added to the prior's
-/// (bumps at the same place and width merged), and the green refitted on the lane with them.
-/// The arm's keys stay as identify_belief fitted them. Returns the shape fit. Throws InputError
-/// when the bumps would pass the plant file's limit, and as fit_shape.
-belief::ShapeEstimate correct_shape(Identification& id, const field::Field& surveyed,
-                                    const std::vector<IdentifyHit>& hits, std::size_t n,
-                                    const std::optional<belief::Belief>& prior,
-                                    const belief::ShapeOptions& options = {});
 
 /// The whole procedure on `truth` (the world the putts happen in, built from `config`; its
 /// field() is what the robot believes before): plan `putts` hits, play them with the arm,

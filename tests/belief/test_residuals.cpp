@@ -1,7 +1,6 @@
 // What the fitted green leaves out: white vision error reads as white, an unsurveyed bump as
-// structure, and a belief that holds the bump reads white again; the shape fit finds the bump.
+// structure, and a belief that holds the bump reads white again.
 #include "belief/residuals.hpp"
-#include "belief/shape_fit.hpp"
 
 #include <cmath>
 
@@ -81,36 +80,6 @@ TEST(Residuals, VisionErrorReadsWhiteAndABumpTheSurveyMissedReadsStructured) {
   const ResidualSummary c = summarize_residuals(fit_green(truth, seen, GreenPrior{}, 0.0, true));
   EXPECT_FALSE(c.structured) << c.lag1;
   EXPECT_LT(std::hypot(c.rms_along, c.rms_across), 1.1 * std::sqrt(2.0) * noise);
-}
-
-// The grid of bumps fitted to the paths over an unsurveyed bump: the residual turns white, the
-// rolling resistance comes back from the bump's pull, and the lane rises where the bump is.
-TEST(ShapeFit, FindsTheBumpTheSurveyMissed) {
-  const field::Field flat = field::load_field("flat");
-  const double noise = 0.0005;
-  const field::Field truth = plant::true_field(flat, bumpy());
-  const auto seen = paths_on(truth, noise);
-  const GreenEstimate plain = fit_green(flat, seen, GreenPrior{}, 0.0);
-  const ShapeEstimate shape = fit_shape(flat, seen, GreenPrior{});
-  ASSERT_FALSE(shape.bumps.empty());
-  EXPECT_LE(shape.bumps.size(), plant::kMaxPlantBumps);
-  EXPECT_NEAR(shape.rms_before, plain.rms_residual, 1e-12);
-  const ResidualSummary after = summarize_residuals(shape.green);
-  EXPECT_FALSE(after.structured) << after.lag1;
-  EXPECT_LT(shape.green.rms_residual, 1.1 * noise);
-  const double rho = truth.rolling_resistance;
-  EXPECT_LT(std::abs(shape.green.rolling_resistance - rho),
-            0.5 * std::abs(plain.rolling_resistance - rho));
-  const field::Field fitted = with_bumps(flat, shape.bumps);
-  const double rise = fitted.height(1.3, 0.0) - fitted.height(0.6, 0.0);
-  EXPECT_GT(rise, 0.001) << "the bump is 3 mm high at (1.3, 0)";
-
-  ShapeOptions bad;
-  bad.spacing = 0.0;
-  EXPECT_THROW(fit_shape(flat, seen, GreenPrior{}, bad), InputError);
-  bad = ShapeOptions{};
-  bad.rounds = 0;
-  EXPECT_THROW(fit_shape(flat, seen, GreenPrior{}, bad), InputError);
 }
 
 TEST(Residuals, ABinWidthThatIsNotPositiveIsRefused) {
