@@ -63,9 +63,12 @@ int main() {
     control::PuttScratch scratch;
     const auto hole = world.field().hole.position;
     const auto run = [&](const std::string& name, double angle, double speed,
-                         control::FullPuttOptions o, bool use_scratch) {
+                         control::FullPuttOptions o, bool use_scratch,
+                         const control::PlantEffectValues& effects = {}) {
+      // The true world's effects: wrappers built here, bound by the harness.
+      control::PlantWrappers plant(model, effects, o.seed);
       const auto r = control::full_system_putt(world, model, d.get(), hole, angle, speed, o,
-                                               use_scratch ? &scratch : nullptr);
+                                               use_scratch ? &scratch : nullptr, plant.effects());
       print((std::string(field) + " " + name).c_str(), world, d.get(), r);
     };
     control::FullPuttOptions plain;
@@ -81,17 +84,19 @@ int main() {
     at_rest.rest_start = control::RestStart::kAtRestPose;
     run("at-rest", -0.15, 1.2, at_rest, true);
     auto noise = handoff;
-    noise.torque_noise = 0.01;
     noise.placement_noise = 0.003;
     noise.seed = 7;
-    run("noise", 0.05, 1.5, noise, true);
+    control::PlantEffectValues torque;
+    torque.torque_noise = 0.01;
+    run("noise", 0.05, 1.5, noise, true, torque);
     auto vision = handoff;
-    vision.perception_latency = 0.03;
-    vision.perceived_ball_offset = {0.002, -0.001};
-    vision.launch_angle_bias = 0.01;
-    vision.club_speed_scale = 0.97;
     vision.record_interval = 0.01;
-    run("plant-vision", 0.0, 1.6, vision, true);
+    control::PlantEffectValues plant;
+    plant.perception_latency = 0.03;
+    plant.perceived_ball_offset = {0.002, -0.001};
+    plant.launch_angle_bias = 0.01;
+    plant.club_speed_scale = 0.97;
+    run("plant-vision", 0.0, 1.6, vision, true, plant);
     run("refused", 0.9, 1.6, handoff, true);
   }
   // A stance: the base beside a ball off the tee (the module built for the robot's own frame).

@@ -195,10 +195,11 @@ Evaluation evaluate_policy(const system::System& system, const Policy& policy,
         r.in_envelope = system::hit_reachable(system, a, v);
         if (r.in_envelope) {
           control::FullPuttOptions po;
-          po.torque_noise = options.torque_noise;  // (a plant may add its own: the seed is set)
           po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
+          control::PlantEffectValues noise;  // (a plant may add its own: the seed is set)
+          noise.torque_noise = options.torque_noise;
           const control::FullPuttResult p =
-              system::arm_hit(system, data, {r.ball, r.hole}, a, v, po);
+              system::arm_hit(system, data, {r.ball, r.hole}, a, v, po, noise);
           r.sunk = p.hit && !p.hit_refused && p.outcome.sunk;
           r.outcome = p.outcome;
         }

@@ -38,9 +38,10 @@ control::FullPuttResult play_putt(const system::System& sys, system::SystemData&
                                   const EvaluateOptions& options, int i) {
   control::FullPuttOptions po;
   po.record_interval = 0.005;
-  po.torque_noise = options.torque_noise;
   po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-  return system::arm_hit(sys, data, s, a, v, po);
+  control::PlantEffectValues noise;
+  noise.torque_noise = options.torque_noise;
+  return system::arm_hit(sys, data, s, a, v, po, noise);
 }
 
 /// The evaluation's totals, and the belief the learned model is to be played in.

@@ -101,11 +101,13 @@ LaunchStudyResult run_launch_study(const system::System& system, const LaunchStu
     const std::uint64_t angle_seed = derive_seed(options.seed, a);
     const double angle = options.angles_deg[a] * kDeg;
     control::FullPuttOptions putt = options.putt;
-    putt.torque_noise = options.torque_noise;
     putt.placement_noise = options.placement_noise;
     putt.seed = derive_seed(angle_seed, static_cast<std::uint64_t>(i));
+    // The execution noise: a wrapper of the simulated arm, drawn from the putt's seed.
+    control::PlantEffectValues noise;
+    noise.torque_noise = options.torque_noise;
     const control::FullPuttResult r =
-        system::arm_putt(system, data, options.hole, angle, options.speed, putt);
+        system::arm_putt(system, data, options.hole, angle, options.speed, putt, noise);
     LaunchHit& h = result.hits[static_cast<std::size_t>(index)];
     h.angle_index = static_cast<int>(a);
     h.hit_index = i;

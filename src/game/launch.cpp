@@ -44,8 +44,9 @@ LaunchError launch_precision(const system::System& system, system::SystemData& d
     for (int k = 0; k < hits; ++k) {
       control::FullPuttOptions o;
       o.seed = derive_seed(seed, static_cast<std::uint64_t>(got.size() + 1000 * dof));
-      o.perceived_ball_offset = {vision_noise * normal(rng), vision_noise * normal(rng)};
-      const auto r = system::arm_putt(system, data, field.hole.position, 0.0, club, o);
+      control::PlantEffectValues seen;
+      seen.perceived_ball_offset = {vision_noise * normal(rng), vision_noise * normal(rng)};
+      const auto r = system::arm_putt(system, data, field.hole.position, 0.0, club, o, seen);
       if (r.hit_refused || !r.hit) continue;
       got.push_back(arm_launch(field, r.ball_start, r.launch_state));
     }

@@ -182,11 +182,12 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         control::FullPuttOptions o;
         o.seed = derive_seed(options.seed, 2000 + h * 64 + k);
         // It sees the ball on the tee as it will see it everywhere: its skill knows that error.
+        control::PlantEffectValues seen;
         if (options.vision_noise > 0.0)
-          o.perceived_ball_offset = {options.vision_noise * normal(rng),
-                                     options.vision_noise * normal(rng)};
+          seen.perceived_ball_offset = {options.vision_noise * normal(rng),
+                                        options.vision_noise * normal(rng)};
         if (revising) o.record_interval = kPathInterval;
-        const auto r = system::arm_putt(*w.truth, *w.data, hole, 0.0, club, o);
+        const auto r = system::arm_putt(*w.truth, *w.data, hole, 0.0, club, o, seen);
         if (r.hit_refused || !r.hit) continue;
         watch(r.outcome.trajectory);
         const ArmLaunch a = arm_launch(field, r.ball_start, r.launch_state);
@@ -300,11 +301,12 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
                       : system::HitPose{system::stance_for(*w.truth, ball, plan.angle), 0.0, true};
         o.stance = pose.stance;
         // The robot walks to the ball it saw: the module sees it off by the vision error.
-        o.perceived_ball_offset = {seen[0] - ball[0], seen[1] - ball[1]};
+        control::PlantEffectValues view;
+        view.perceived_ball_offset = {seen[0] - ball[0], seen[1] - ball[1]};
         const double club =
             model_hit ? model_hit->club_speed : skill.club_for(plan.speed, club_min, club_max);
         const double hitting = model_hit ? pose.angle : -skill.angle_offset(club);
-        const auto r = system::arm_putt(*w.truth, *w.data, hole, hitting, club, o);
+        const auto r = system::arm_putt(*w.truth, *w.data, hole, hitting, club, o, view);
         if (r.hit_refused || !r.hit) {
           // Braked, the ball untouched: the stroke counts (a whiff), the ball stays.
           out.rest_position = ball;

@@ -14,9 +14,14 @@ Perceived DelayedPerception::perceive(double now) noexcept {
     if (times_[static_cast<std::size_t>(pick)] <= now - latency_) break;
   }
   Perceived p = history_[static_cast<std::size_t>(pick)];
+  p.age += now - times_[static_cast<std::size_t>(pick)];
+  return p;
+}
+
+Perceived OffsetPerception::perceive(double now) noexcept {
+  Perceived p = source_->perceive(now);
   p.ball[0] += offset_[0];
   p.ball[1] += offset_[1];
-  p.age += now - times_[static_cast<std::size_t>(pick)];
   return p;
 }
 

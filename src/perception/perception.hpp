@@ -30,24 +30,58 @@ class Perception {
   virtual Perceived perceive(double now) noexcept = 0;
 };
 
-/// A source as a plant's vision really is (plant/plant.hpp): what `source` perceived `latency`
-/// seconds ago (the oldest answer it has until then), the ball moved by a constant `ball_offset`
-/// (the error of this putt's estimate). Holds a reference to `source`. Real-time safe: a fixed
-/// history, no allocation.
-class DelayedPerception final : public Perception {
+/// A perception that changes what another one perceives: one effect of a plant's vision (late,
+/// off). The caller of a putt builds it before the perception it wraps exists, and the harness
+/// binds it (`wrap`) once per putt, ros2_control's wrapped sensor interface. Real-time safe.
+class PerceptionWrapper : public Perception {
  public:
-  DelayedPerception(Perception& source, double latency, std::array<double, 2> ball_offset)
-      : source_(&source), latency_(latency), offset_(ball_offset) {}
+  /// Wraps `inner` (not owned; must outlive the use) and starts afresh: the same answers as a
+  /// wrapper made now.
+  virtual void wrap(Perception& inner) noexcept = 0;
+  /// It answers what `inner` answers, bit for bit: the harness leaves it out of the chain (and
+  /// may cache the approach, which depends on what the module perceives).
+  virtual bool identity() const noexcept = 0;
+};
+
+/// A source as a plant's vision really is (plant/plant.hpp): what `source` perceived `latency`
+/// seconds ago (the oldest answer it has until then). A fixed history, no allocation.
+class DelayedPerception final : public PerceptionWrapper {
+ public:
+  /// Unbound: `wrap` before the first `perceive`.
+  explicit DelayedPerception(double latency) : latency_(latency) {}
+  DelayedPerception(Perception& source, double latency) : latency_(latency) { wrap(source); }
+  void wrap(Perception& inner) noexcept override {
+    source_ = &inner;
+    head_ = count_ = 0;
+  }
+  bool identity() const noexcept override { return !(latency_ > 0.0); }
   Perceived perceive(double now) noexcept override;
   static constexpr int kHistory = 128;  ///< answers kept (robot updates: 1.28 s at 100 Hz)
 
  private:
-  Perception* source_;
+  Perception* source_ = nullptr;
   double latency_;
-  std::array<double, 2> offset_;
   std::array<double, kHistory> times_{};
   std::array<Perceived, kHistory> history_{};
   int head_ = 0, count_ = 0;
+};
+
+/// A source that sees the ball moved by a constant `ball_offset` [m] (the error of this putt's
+/// estimate; the hole as the source sees it).
+class OffsetPerception final : public PerceptionWrapper {
+ public:
+  /// Unbound: `wrap` before the first `perceive`.
+  explicit OffsetPerception(std::array<double, 2> ball_offset) : offset_(ball_offset) {}
+  OffsetPerception(Perception& source, std::array<double, 2> ball_offset) : offset_(ball_offset) {
+    wrap(source);
+  }
+  void wrap(Perception& inner) noexcept override { source_ = &inner; }
+  bool identity() const noexcept override { return offset_[0] == 0.0 && offset_[1] == 0.0; }
+  Perceived perceive(double now) noexcept override;
+
+ private:
+  Perception* source_ = nullptr;
+  std::array<double, 2> offset_;
 };
 
 /// `source` seen from a mobile base's own frame (robot::Stance): ball and hole taken from the

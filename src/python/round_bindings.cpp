@@ -234,10 +234,11 @@ void bind_round(py::module_& m) {
             const double u = putts > 1 ? static_cast<double>(k) / (putts - 1) : 0.5;
             control::FullPuttOptions o;
             o.seed = derive_seed(seed, 2000 + static_cast<std::uint64_t>(k));
+            control::PlantEffectValues seen;
             if (vision_noise > 0.0)
-              o.perceived_ball_offset = {vision_noise * normal(rng), vision_noise * normal(rng)};
+              seen.perceived_ball_offset = {vision_noise * normal(rng), vision_noise * normal(rng)};
             const auto r =
-                system::arm_putt(s, data, hole, 0.0, lo + (hi - lo) * (0.02 + 0.96 * u), o);
+                system::arm_putt(s, data, hole, 0.0, lo + (hi - lo) * (0.02 + 0.96 * u), o, seen);
             if (r.hit_refused || !r.hit) continue;
             const game::ArmLaunch a = game::arm_launch(s.field(), r.ball_start, r.launch_state);
             skill.add(lo + (hi - lo) * (0.02 + 0.96 * u), 0.0, a.angle, a.speed, a.club);

@@ -46,10 +46,11 @@ LaunchNoise measure_launch_noise(const system::System& system, const field::Situ
   std::vector<double> angles, speeds;
   for (int k = 0; k < putts; ++k) {
     control::FullPuttOptions o;
-    o.torque_noise = torque_noise;
     o.seed = derive_seed(seed, static_cast<std::uint64_t>(k));
+    control::PlantEffectValues noise;
+    noise.torque_noise = torque_noise;
     // The hole off the lane's line of play: the launch is what is measured.
-    const auto r = system::arm_putt(system, data, hole, guess.angle, speed, o);
+    const auto r = system::arm_putt(system, data, hole, guess.angle, speed, o, noise);
     if (!r.hit) continue;
     angles.push_back(r.launch.angle);
     speeds.push_back(r.launch.speed);

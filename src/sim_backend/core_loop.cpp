@@ -104,6 +104,8 @@ CoreLoop::CoreLoop(const sim::World& world, const SimIds& ids, const ModuleModel
       d_(d),
       options_(options),
       ids_(ids),
+      sim_arm_(ids_.arm, d),
+      arm_(&sim_arm_),
       own_(std::make_unique<ModuleData>(model)),
       data_(own_.get()),
       truth_(world, d),
@@ -141,8 +143,7 @@ void CoreLoop::call_hook(Call&& call) noexcept {
 
 void CoreLoop::module_tick() noexcept {
   ModuleData& data = *data_;
-  MujocoArm arm(ids_.arm, d_);
-  const MeasuredState measured = arm.read();
+  const MeasuredState measured = arm_->read();
   if (data.tick % model_->config().robot_update_divider == 0) {
     robot_update(*model_, data, perception_->perceive(measured.time));
     call_hook([&](CoreHooks& h) { h.after_robot_update(measured, data); });
@@ -152,7 +153,7 @@ void CoreLoop::module_tick() noexcept {
   const ModuleState before = data.state;
   const Clock::time_point t0 = Clock::now();
   const ModuleCommand command = module_update(*model_, data, measured);
-  arm.write(command);
+  arm_->write(command);
   timing_.add(since(t0, Clock::now()), budget_ns_);
   ticks_.store(ticks_.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
   call_hook([&](CoreHooks& h) { h.after_tick(command, before); });

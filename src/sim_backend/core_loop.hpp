@@ -3,12 +3,12 @@
 /// putt harness (full_system.hpp), the console's lockstep and real-time modes and the viewer
 /// (system/session.hpp). ros2_control's read -> update -> write, libfranka's control callback.
 ///
-/// The loop is the simulator's side (it owns the MuJoCo adapter, sim_backend/mujoco_arm.hpp); the
-/// module it runs knows no simulator.
+/// The loop is the simulator's side (it owns the MuJoCo adapter, sim_backend/mujoco_arm.hpp, and
+/// drives it or a plant's arm wrapped around it: set_arm); the module it runs knows no simulator.
 ///
 /// One tick (one core period = steps_per_tick physics steps):
 ///
-///   measured = arm.read()                               the adapter: joints and clock
+///   measured = arm.read()                               the backend: joints and clock
 ///   every robot_update_divider-th tick:
 ///     robot_update(model, data, perception(t))          perception and the DS (the robot update)
 ///     hooks.after_robot_update(measured, data)          e.g. the console's recorder, an armed hit
@@ -127,6 +127,12 @@ class CoreLoop {
   void set_perception(perception::Perception* perception);
   /// Not owned; nullptr: none.
   void set_hooks(CoreHooks* hooks) { hooks_ = hooks; }
+  /// `arm` (not owned; must outlive the loop's use of it) is read and written in place of the
+  /// simulated arm: a plant's arm wrapping simulated_arm() (sim_backend/plant_effects.hpp).
+  /// nullptr: the simulated arm.
+  void set_arm(ArmBackend* arm) { arm_ = arm != nullptr ? arm : &sim_arm_; }
+  /// The simulated arm (MuJoCo's joints and motors in the loop's data).
+  MujocoArm& simulated_arm() { return sim_arm_; }
 
   /// One physics step; first, on a core-tick boundary, the tick's read -> update -> write.
   void step() noexcept;
@@ -172,6 +178,8 @@ class CoreLoop {
   mjData* d_;
   CoreLoopOptions options_;
   SimIds ids_;
+  MujocoArm sim_arm_;
+  ArmBackend* arm_;
   std::unique_ptr<ModuleData> own_;  ///< the module data the loop was made with
   ModuleData* data_;
   perception::SimulatorPerception truth_;

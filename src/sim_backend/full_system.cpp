@@ -17,13 +17,16 @@ struct Putt {
   std::array<double, 2> hole;
   double angle, speed;
   const FullPuttOptions& options;
+  const PlantEffects& effects;
   PuttScratch::Impl& mem;
   const SimIds& ids;
   bool own_scratch;  ///< the scratch lives for this call only (no approach cache then)
 
   std::array<double, 2> ball_start{};
   bool valid_angle = false, at_rest_start = false, kinematic = false;
-  bool plant_vision = false;  ///< the module's vision is late or off (options)
+  /// The arm does what the simulation says (no torque noise): asked once, from the wrapper.
+  bool ideal_arm = true;
+  bool plant_vision = false;  ///< the module's vision is late or off (effects.perception)
 };
 
 /// One physics step of the loop, noting when the module first saw the hit.
@@ -54,9 +57,8 @@ void place_ball_and_arm(Putt& p) {
   const auto& cfg = p.model.config();
   p.valid_angle = std::isfinite(p.angle) && p.angle >= cfg.angle_min && p.angle <= cfg.angle_max;
   p.at_rest_start = options.rest_start == RestStart::kAtRestPose && p.valid_angle;
-  // Torque noise acts on the arm during the approach too: then it is simulated.
-  p.kinematic = options.rest_start == RestStart::kKinematicApproach && p.valid_angle &&
-                !(options.torque_noise > 0.0);
+  // A plant's arm (torque noise) acts during the approach too: then it is simulated.
+  p.kinematic = options.rest_start == RestStart::kKinematicApproach && p.valid_angle && p.ideal_arm;
   if (p.at_rest_start || p.kinematic) {
     // The ball at rest in its contact, as after the approach; the arm at the rest pose.
     const sim::World& settle_world = ball_world != nullptr ? *ball_world : world;
@@ -116,9 +118,10 @@ bool approach(const Putt& p, CoreLoop& run, Stepper& step, FullPuttResult& r,
   const double min_rest_time = p.at_rest_start ? kAtRestSettleTime : 0.2;
   bool settled = false;
   if (p.kinematic) settled = approach_kinematically(p, run, r, settle_steps, kinematic_steps);
-  // Approach cache (kApproach, no noise): a hit restores the state at the hit request.
+  // Approach cache (kApproach, the arm and vision as simulated): a hit restores the state at the
+  // hit request.
   const bool cacheable = options.rest_start == RestStart::kApproach && p.valid_angle &&
-                         !(options.torque_noise > 0.0) && !p.plant_vision && !p.own_scratch;
+                         p.ideal_arm && !p.plant_vision && !p.own_scratch;
   ApproachKey key;
   PuttScratch::Impl::AtRest* cached = nullptr;
   if (cacheable) {
@@ -174,12 +177,10 @@ bool hit(const Putt& p, CoreLoop& run, Stepper& step, FullPuttResult& r,
   const FullPuttOptions& options = p.options;
   const auto& cfg = p.model.config();
   mjData* d = p.d;
-  // The arm of a plant reaches club_speed_scale of what it is asked for.
-  const double arm_speed =
-      options.club_speed_scale == 1.0
-          ? p.speed
-          : std::clamp(p.speed * options.club_speed_scale, cfg.speed_min, cfg.speed_max);
-  const bool request_valid = request_hit(p.model, run.module(), p.angle, arm_speed);
+  // The module is asked for the hit the plant's arm reaches (club speed scale).
+  HitRequest asked{p.angle, p.speed};
+  if (p.effects.hit != nullptr && !p.effects.hit->ideal()) asked = p.effects.hit->reach(asked, cfg);
+  const bool request_valid = request_hit(p.model, run.module(), asked.angle, asked.speed);
   const long hit_steps = std::lround(options.hit_timeout / p.world.model()->opt.timestep);
   t_request = d->time;
   bool contact = false;
@@ -198,10 +199,10 @@ bool hit(const Putt& p, CoreLoop& run, Stepper& step, FullPuttResult& r,
     step();
     track_ratios(p.model, p.ids, d, run.module(), r);
     if (k == 2 && run.module().state != ModuleState::kHitting) {
-      // Execution noise only: the torque disturbance makes the arm jitter around the
+      // A plant's arm only (torque noise): the disturbance makes the arm jitter around the
       // stationarity threshold, so a valid request can be refused as "not at rest" at the next
       // tick. Wait for the rest pose again and repeat the request, until settle_timeout.
-      if (options.torque_noise > 0.0 && request_valid && run.module().state == ModuleState::kRest) {
+      if (!p.ideal_arm && request_valid && run.module().state == ModuleState::kRest) {
         bool again = false;
         while (!again && d->time < options.settle_timeout) {
           step();
@@ -210,7 +211,7 @@ bool hit(const Putt& p, CoreLoop& run, Stepper& step, FullPuttResult& r,
                   run.steps() % 2 == 0;
         }
         if (again) {
-          request_hit(p.model, run.module(), p.angle, arm_speed);
+          request_hit(p.model, run.module(), asked.angle, asked.speed);
           r.rest_time = t_request = d->time;
           k = -1;
           continue;
@@ -262,14 +263,15 @@ void roll(const Putt& p, CoreLoop& run, Stepper& step, FullPuttResult& r, long k
     trajectory.push_back({data->time - t_contact, q[0], q[1], q[2], v[0], v[1], v[2]});
   };
   if (record_every) record(world, d);
-  bool launch_turned = options.launch_angle_bias == 0.0;
+  const LaunchEffect* launch = p.effects.launch;
+  bool released = launch == nullptr || launch->ideal();
   long k = 1;
   for (; k <= max_steps && !decided; ++k) {
     step();
     track_ratios(p.model, p.ids, d, run.module(), r);
-    if (!launch_turned && !r.touching_ball) {
-      turn_ball(world, d, options.launch_angle_bias);
-      launch_turned = true;
+    if (!released && !r.touching_ball) {
+      launch->after_release(world, d);
+      released = true;
     }
     decided = tracker.update(d);
     if (record_every && (k % record_every == 0 || decided)) record(world, d);
@@ -350,7 +352,8 @@ void roll(const Putt& p, CoreLoop& run, Stepper& step, FullPuttResult& r, long k
 
 FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
                                 std::array<double, 2> hole, double angle, double speed,
-                                const FullPuttOptions& options, PuttScratch* scratch) {
+                                const FullPuttOptions& options, PuttScratch* scratch,
+                                const PlantEffects& effects) {
   if (options.ball_world != nullptr) check_ball_world(world, *options.ball_world);
   options.validate();
   check_stance(world, model, options.stance);
@@ -360,32 +363,38 @@ FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& mode
     scratch = local.get();
   }
   PuttScratch::Impl& mem = scratch->impl();
-  Putt p{world, model, d, hole, angle, speed, options, mem, mem.ids_for(world), local != nullptr};
-  p.plant_vision = options.perception_latency > 0.0 || options.perceived_ball_offset[0] != 0.0 ||
-                   options.perceived_ball_offset[1] != 0.0;
+  const SimIds& ids = mem.ids_for(world);
+  Putt p{world, model, d, hole, angle, speed, options, effects, mem, ids, local != nullptr};
+  p.ideal_arm = effects.ideal_arm();
+  p.plant_vision = !effects.ideal_perception();
   place_ball_and_arm(p);
 
   FullPuttResult r;
   r.ball_start = p.ball_start;
   r.min_position_margin = 1e9;
   CoreLoop run(world, p.ids, model, d);
-  // The plant's vision: late and off by this putt's error.
+  // The plant's vision (late, off by this putt's error) around what the module sees; the
+  // identity wrappers are left out.
   perception::SimulatorPerception truth(world, d);
   perception::Perception& seen = options.perception_source != nullptr
                                      ? options.perception_source->attach(world, d)
                                      : static_cast<perception::Perception&>(truth);
-  perception::DelayedPerception delayed(seen, options.perception_latency,
-                                        options.perceived_ball_offset);
-  perception::StancePerception from_stance(
-      p.plant_vision ? static_cast<perception::Perception&>(delayed) : seen, options.stance);
+  perception::Perception* vision = &seen;
+  for (perception::PerceptionWrapper* w : effects.perception) {
+    if (w == nullptr || w->identity()) continue;
+    w->wrap(*vision);
+    vision = w;
+  }
+  perception::StancePerception from_stance(*vision, options.stance);
   if (!options.stance.identity())
     run.set_perception(&from_stance);
-  else if (p.plant_vision)
-    run.set_perception(&delayed);
-  else if (options.perception_source != nullptr)
-    run.set_perception(&seen);
-  TorqueNoise torque_noise(model, run, options);
-  if (torque_noise.enabled()) run.set_hooks(&torque_noise);
+  else if (p.plant_vision || options.perception_source != nullptr)
+    run.set_perception(vision);
+  // The plant's arm (torque noise) around the simulated one.
+  if (!p.ideal_arm) {
+    effects.arm->wrap(run.simulated_arm());
+    run.set_arm(effects.arm);
+  }
   Stepper step{run, d};
   long kinematic_steps = 0;  // steps not simulated here: kinematic approach or restored
   const auto stopped = [&] {

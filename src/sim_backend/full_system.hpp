@@ -14,6 +14,7 @@
 #include "sim/world.hpp"
 #include "sim_backend/core_loop.hpp"
 #include "sim_backend/mujoco_arm.hpp"
+#include "sim_backend/plant_effects.hpp"
 
 namespace mg::control {
 
@@ -25,8 +26,8 @@ enum class RestStart {
   /// The same approach with a plant that follows the module's reference exactly and is not
   /// simulated (the module's reference in Rest does not depend on the measurement), the ball
   /// settled on its start; physics from the hit request on. The arm starts the hit where the
-  /// simulated approach leaves it, up to its tracking error (notes/speed.md). With torque noise
-  /// the approach is simulated (kApproach).
+  /// simulated approach leaves it, up to its tracking error (notes/speed.md). With an arm that is
+  /// not ideal (PlantEffects::ideal_arm: torque noise) the approach is simulated (kApproach).
   kKinematicApproach,
   /// The arm starts still at the rest pose (the module's IK fixed point for it), the ball settled
   /// on its start; after kAtRestSettleTime in Rest the hit is asked for. Cheapest, but the arm's
@@ -38,6 +39,10 @@ enum class RestStart {
 /// [s] time in Rest before the hit with RestStart::kAtRestPose (10 core ticks).
 inline constexpr double kAtRestSettleTime = 0.02;
 
+/// The harness's settings of a full-system putt: how it starts, its time limits, what it records,
+/// the rules, the ball world, the ball's placement, the perception source and the stance. The
+/// true world's effects on the arm, the hit, the launch and the vision are wrappers the caller
+/// hands over apart (sim_backend/plant_effects.hpp).
 struct FullPuttOptions {
   RestStart rest_start = RestStart::kApproach;
   /// Not owned, may be shared by threads; must outlive the call. A ball-only world of the same
@@ -54,31 +59,16 @@ struct FullPuttOptions {
   double record_interval = 0.0;
   sim::OutcomeRules rules{};
 
-  // --- Execution noise (launch study, thesis 6.1). Zero noise: the run is unchanged, bit for bit.
-  /// Std of a Gaussian joint-torque disturbance, as a fraction of each joint's torque limit; a
-  /// fresh draw per joint every core tick, added to the plant (d->qfrc_applied at the arm's dofs,
-  /// after the controller's clamp) for the whole run (rest, hit, roll). [-]
-  double torque_noise = 0.0;
+  // --- The experiment's ball placement. Zero noise: the run is unchanged, bit for bit.
   /// Std of the ball's placement error around the tee, per horizontal axis. [m]
   double placement_noise = 0.0;
-  /// Seed of the noise (mg::Rng; placement and torque use derive_seed(seed, 0) and (seed, 1)).
+  /// Seed of the putt's randomness (mg::Rng): the placement draws derive_seed(seed, 0); a torque
+  /// noise built for the putt draws derive_seed(seed, 1) (PlantWrappers).
   std::uint64_t seed = 0;
 
-  // --- The plant's arm and vision (plant/plant.hpp; set by system::arm_putt). Identity values:
-  // the run is unchanged, bit for bit.
-  /// [rad] The ball's horizontal velocity is turned by this the first step after the club has
-  /// left it (a club face or calibration error the robot does not know of).
-  double launch_angle_bias = 0.0;
-  /// The module is asked for this times `speed` (the arm reaches this fraction of the commanded
-  /// club speed), clamped to the envelope [speed_min, speed_max].
-  double club_speed_scale = 1.0;
-  /// [s] The module perceives the ball and hole this old (perception::DelayedPerception).
-  double perception_latency = 0.0;
-  /// [m] The module perceives the ball moved by this for the whole putt (the vision's error).
-  std::array<double, 2> perceived_ball_offset{0.0, 0.0};
   /// Not owned. What the module perceives instead of the simulator's truth (cameras that render
-  /// the simulation: vision/camera_perception.hpp); the plant's latency and offset and the
-  /// stance apply on top. nullptr: the truth.
+  /// the simulation: vision/camera_perception.hpp); the plant's vision (PlantEffects::perception)
+  /// and the stance apply on top. nullptr: the truth.
   perception::PerceptionSource* perception_source = nullptr;
 
   // --- Where the arm stands (a mobile base beside the ball; robot/wam_model.hpp). The identity:
@@ -142,13 +132,13 @@ struct FullPuttResult {
 
 /// Caller-owned scratch of full_system_putt, one per thread (not itself thread-safe): the ball
 /// world's mjData, the settled balls of kKinematicApproach / kAtRestPose, and an approach cache
-/// for kApproach without torque noise (the 4 latest states at the hit request, keyed by world,
-/// module model (address and what of it the approach reads), angle, ball start, hole and
-/// settle_timeout; a hit restores the state and skips the simulated approach). It holds memory
-/// and caches only, never state that changes a result: a putt gives the same bits with a fresh
-/// scratch, a used one, or none (nullptr: made locally, no approach cache). With an approach from
-/// the cache, FullPuttResult::timing covers only the core updates run in the call. A scratch must
-/// not outlive the module models it was used with.
+/// for kApproach with an ideal arm and perception (PlantEffects; the 4 latest states at the hit
+/// request, keyed by world, module model (address and what of it the approach reads), angle, ball
+/// start, hole and settle_timeout; a hit restores the state and skips the simulated approach). It
+/// holds memory and caches only, never state that changes a result: a putt gives the same bits with
+/// a fresh scratch, a used one, or none (nullptr: made locally, no approach cache). With an
+/// approach from the cache, FullPuttResult::timing covers only the core updates run in the call. A
+/// scratch must not outlive the module models it was used with.
 class PuttScratch {
  public:
   PuttScratch();
@@ -168,8 +158,9 @@ class PuttScratch {
 robot::Vector7 rest_joint_positions(const ModuleModel& model, double angle);
 
 /// Resets `d`, sets the hole, brings the arm to the rest pose for `angle` (options.rest_start),
-/// hits at `speed` and simulates until the ball's outcome is decided. Deterministic: the same
-/// inputs (options included) give the same bits, on any thread, with any `scratch`.
+/// hits at `speed` and simulates until the ball's outcome is decided, with the true world's
+/// `effects` (wrappers bound here, each putt afresh; none: the simulation as it is). Deterministic:
+/// the same inputs (options included) give the same bits, on any thread, with any `scratch`.
 ///
 /// Hand-off (options.ball_world set): once the launch is measured, the module is braking or idle
 /// (it never hits again in a putt), the club does not touch the ball and the ball's centre is
@@ -177,8 +168,8 @@ robot::Vector7 rest_joint_positions(const ModuleModel& model, double angle);
 /// |v_brake0| brake_time + brake_lift_height, a bound on the rest of the ramp; idle: 0) + 5 cm
 /// (tracking, drift) + the head's bounding radius + the ball's radius, the ball's state goes to
 /// options.ball_world and the roll ends there; the arm is no longer simulated (nor its torque
-/// noise). Should the ball come back within R of where the club head was, the ball-only roll is
-/// dropped and the arm simulated on from the hand-off, exactly as without one
+/// noise: PlantEffects::arm). Should the ball come back within R of where the club head was, the
+/// ball-only roll is dropped and the arm simulated on from the hand-off, exactly as without one
 /// (handoff_fallbacks; tried again past that time, once the ball is clear, up to 3 times).
 /// On return `d` holds the arm as at the hand-off and the ball as at the end.
 ///
@@ -187,7 +178,7 @@ robot::Vector7 rest_joint_positions(const ModuleModel& model, double angle);
 /// result.
 FullPuttResult full_system_putt(const sim::World& world, const ModuleModel& model, mjData* d,
                                 std::array<double, 2> hole, double angle, double speed,
-                                const FullPuttOptions& options = {},
-                                PuttScratch* scratch = nullptr);
+                                const FullPuttOptions& options = {}, PuttScratch* scratch = nullptr,
+                                const PlantEffects& effects = {});
 
 }  // namespace mg::control

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include <fmt/format.h>
 
@@ -128,22 +129,6 @@ sim::BallState settled_ball(const sim::World& settle_world, mjData* sd, const ro
   return s;
 }
 
-/// Turns the ball's motion about the vertical by `angle` [rad]: its linear velocity, and its
-/// orientation (so its body-frame spin turns with it).
-void turn_ball(const sim::World& world, mjData* d, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  mjtNum* v = d->qvel + world.ids().ball_dof;
-  const double vx = v[0], vy = v[1];
-  v[0] = c * vx - s * vy;
-  v[1] = s * vx + c * vy;
-  mjtNum* q = d->qpos + world.ids().ball_qpos + 3;
-  const mjtNum turn[4] = {std::cos(0.5 * angle), 0.0, 0.0, std::sin(0.5 * angle)};
-  mjtNum turned[4];
-  mju_mulQuat(turned, turn, q);
-  mju_normalize4(turned);
-  for (int i = 0; i < 4; ++i) q[i] = turned[i];
-}
-
 ApproachKey approach_key(const ModuleModel& model) {
   return ApproachKey{model.config(), model.hitting().x_star()};
 }
@@ -187,13 +172,7 @@ void FullPuttOptions::validate() const {
   require_in_range("hit_timeout", hit_timeout, 0.01, 600.0);
   require_in_range("launch_delay", launch_delay, 0.0, 1.0);
   require_in_range("record_interval", record_interval, 0.0, 10.0);
-  require_in_range("torque_noise", torque_noise, 0.0, 1.0);
   require_in_range("placement_noise", placement_noise, 0.0, 0.1);
-  require_in_range("launch_angle_bias", launch_angle_bias, -0.5, 0.5);
-  require_in_range("club_speed_scale", club_speed_scale, 0.1, 10.0);
-  require_in_range("perception_latency", perception_latency, 0.0, 1.0);
-  require_in_range("perceived_ball_offset.x", perceived_ball_offset[0], -1.0, 1.0);
-  require_in_range("perceived_ball_offset.y", perceived_ball_offset[1], -1.0, 1.0);
   for (std::size_t i = 0; i < 3; ++i)
     require_in_range(fmt::format("stance.position[{}]", i), stance.position[i], -100.0, 100.0);
   require_in_range("stance.yaw", stance.yaw, -2.0 * robot::kPi, 2.0 * robot::kPi);

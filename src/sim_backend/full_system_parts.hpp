@@ -1,12 +1,10 @@
 #pragma once
-/// The parts of a full-system putt (sim_backend/full_system.hpp) other than its flow: the execution
-/// noise (a hook of the core loop), the checks of its worlds, the settled ball, the launch turned
-/// by a plant, the bookkeeping of limits and touches, and the per-thread scratch (PuttScratch's
-/// caches). Internal to the simulator backend (not installed).
+/// The parts of a full-system putt (sim_backend/full_system.hpp) other than its flow: the checks of
+/// its worlds, the settled ball, the bookkeeping of limits and touches, and the per-thread scratch
+/// (PuttScratch's caches). Internal to the simulator backend (not installed).
 #include <array>
 #include <cstdint>
 #include <memory>
-#include <random>
 #include <vector>
 
 #include "core/rng.hpp"
@@ -26,44 +24,6 @@ constexpr std::size_t kAtRestCacheSize = 4;
 void track_ratios(const ModuleModel& model, const SimIds& ids, const mjData* d,
                   const ModuleData& data, FullPuttResult& r);
 
-/// Execution noise (FullPuttOptions::torque_noise). Disabled at zero: then nothing here touches
-/// mjData and the run is bit-identical to a noise-free build.
-/// A hook of the putt's core loop: before each physics step on a core tick, a fresh draw per
-/// joint replaces the previous one in d->qfrc_applied (added to whatever else is applied there).
-/// The module never reads qfrc_applied, so drawing after the tick's write is the same as before.
-class TorqueNoise final : public CoreHooks {
- public:
-  TorqueNoise(const ModuleModel& model, const CoreLoop& loop, const FullPuttOptions& options)
-      : arm_(&model.arm()),
-        ids_(&loop.ids().arm),
-        d_(loop.data()),
-        enabled_(options.torque_noise > 0.0),
-        rng_(derive_seed(options.seed, 1)),
-        steps_per_tick_(loop.steps_per_tick()) {
-    for (int j = 0; j < 7; ++j) std_[j] = options.torque_noise * arm_->torque_limit()[j];
-  }
-  bool enabled() const { return enabled_; }
-  void before_step(long step) override {
-    if (!enabled_ || step % steps_per_tick_ != 0) return;
-    for (int j = 0; j < 7; ++j) {
-      const double tau = std_[j] * normal_(rng_);
-      d_->qfrc_applied[ids_->dof[static_cast<std::size_t>(j)]] += tau - last_[j];
-      last_[j] = tau;
-    }
-  }
-
- private:
-  const robot::ArmModel* arm_;
-  const robot::ArmIds* ids_;
-  mjData* d_;
-  bool enabled_;
-  Rng rng_;
-  std::normal_distribution<double> normal_{0.0, 1.0};
-  int steps_per_tick_ = 2;
-  robot::Vector7 std_ = robot::Vector7::Zero();
-  robot::Vector7 last_ = robot::Vector7::Zero();
-};
-
 /// The tee (or the stance's ball), plus a Gaussian error of std `placement_noise` per axis (seeded
 /// stream 0).
 std::array<double, 2> noisy_ball_start(const sim::World& world, const FullPuttOptions& options);
@@ -77,10 +37,6 @@ void check_stance(const sim::World& world, const ModuleModel& model, const robot
 /// else `world` with the arm held at the default posture, away from the ball).
 sim::BallState settled_ball(const sim::World& settle_world, mjData* sd, const robot::ArmIds* arm,
                             std::array<double, 2> start, std::array<double, 2> hole);
-
-/// Turns the ball's motion about the vertical by `angle` [rad]: its linear velocity, and its
-/// orientation (so its body-frame spin turns with it).
-void turn_ball(const sim::World& world, mjData* d, double angle);
 
 // What of a module model the approach depends on (besides the model's address): its config
 // (the rest speeds and the IK options derive from it) and the hitting point x*. A replaced model

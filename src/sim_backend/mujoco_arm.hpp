@@ -56,6 +56,10 @@ class MujocoArm final : public ArmBackend {
   MujocoArm(const robot::ArmIds& arm, mjData* d) : arm_(&arm), d_(d) {}
   MeasuredState read() noexcept override;
   void write(const ModuleCommand& command) noexcept override;
+  /// The simulation it reads and writes, for a wrapper that acts on more of it (a plant's arm:
+  /// sim_backend/plant_effects.hpp).
+  const robot::ArmIds& ids() const { return *arm_; }
+  mjData* data() const { return d_; }
 
  private:
   const robot::ArmIds* arm_;

@@ -213,7 +213,8 @@ std::array<double, 2> real_hole(const plant::Plant& p, std::array<double, 2> hol
 }
 
 control::FullPuttResult arm_putt(const System& system, SystemData& data, std::array<double, 2> hole,
-                                 double angle, double speed, control::FullPuttOptions options) {
+                                 double angle, double speed, control::FullPuttOptions options,
+                                 control::PlantEffectValues effects) {
   field::check_hole_position(system.field(), hole);
   const plant::Plant& p = system.plant();
   if (!p.empty()) {
@@ -221,17 +222,19 @@ control::FullPuttResult arm_putt(const System& system, SystemData& data, std::ar
     hole = real_hole(system, seen);
     field::check_hole_position(system.arm_world().field(), hole);
     if (p.arm.torque_noise > 0.0)
-      options.torque_noise = std::hypot(options.torque_noise, p.arm.torque_noise);
-    options.launch_angle_bias += p.arm.launch_angle_bias;
-    options.club_speed_scale *= p.arm.club_speed_scale;
-    options.perception_latency += p.perception.latency;
+      effects.torque_noise = std::hypot(effects.torque_noise, p.arm.torque_noise);
+    effects.launch_angle_bias += p.arm.launch_angle_bias;
+    effects.club_speed_scale *= p.arm.club_speed_scale;
+    effects.perception_latency += p.perception.latency;
     if (p.perception.noise > 0.0) {
       Rng rng(position_seed(22, seen));
       const double ex = gaussian(rng), ey = gaussian(rng);
-      options.perceived_ball_offset[0] += p.perception.noise * ex;
-      options.perceived_ball_offset[1] += p.perception.noise * ey;
+      effects.perceived_ball_offset[0] += p.perception.noise * ex;
+      effects.perceived_ball_offset[1] += p.perception.noise * ey;
     }
   }
+  // The true world's effects as wrappers of what the harness simulates (validated here).
+  control::PlantWrappers wrappers(system.module(), effects, options.seed);
   // The roll finishes in the ball-only world once the club has left the ball (same outcome,
   // notes/speed.md); the scratch caches the approach to the rest pose of recent angles.
   if (options.ball_world == nullptr) options.ball_world = &system.ball_world();
@@ -240,7 +243,7 @@ control::FullPuttResult arm_putt(const System& system, SystemData& data, std::ar
   if (options.stance.identity()) options.stance = stance_for(system, system.field().tee, 0.0);
   if (options.stance.identity())
     return control::full_system_putt(system.arm_world(), system.module(), data.arm.get(), hole,
-                                     angle, speed, options, data.scratch.get());
+                                     angle, speed, options, data.scratch.get(), wrappers.effects());
   check_ball_position(system.field(), {options.stance.position[0], options.stance.position[1]},
                       "ball");
   if (!data.stance_world || !(data.stance == options.stance)) {
@@ -250,15 +253,17 @@ control::FullPuttResult arm_putt(const System& system, SystemData& data, std::ar
     data.stance_arm = data.stance_world->make_data();
   }
   return control::full_system_putt(*data.stance_world, system.module(), data.stance_arm.get(), hole,
-                                   angle, speed, options, data.scratch.get());
+                                   angle, speed, options, data.scratch.get(), wrappers.effects());
 }
 
 control::FullPuttResult arm_hit(const System& system, SystemData& data,
                                 const field::Situation& situation, double angle, double speed,
-                                control::FullPuttOptions options) {
+                                control::FullPuttOptions options,
+                                const control::PlantEffectValues& effects) {
   const HitPose pose = hit_pose(system, situation.ball, angle, speed);
   options.stance = pose.stance;
-  control::FullPuttResult r = arm_putt(system, data, situation.hole, pose.angle, speed, options);
+  control::FullPuttResult r =
+      arm_putt(system, data, situation.hole, pose.angle, speed, options, effects);
   if (pose.turned) {
     r.club.angle = std::remainder(r.club.angle + pose.stance.yaw, 2.0 * robot::kPi);
     r.launch.angle = std::remainder(r.launch.angle + pose.stance.yaw, 2.0 * robot::kPi);

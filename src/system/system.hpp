@@ -184,13 +184,18 @@ void check_real_holes(const field::Field& field, const plant::Plant& plant,
 
 /// The arm hits the ball (lockstep simulator mode) with the hole seen at `hole` (real_hole is
 /// where it is): hitting angle `angle` [rad], club speed `speed` [m/s]; the plant's arm and vision
-/// act (the module sees the ball off by this situation's vision error). The ball lies at
+/// act (the module sees the ball off by this situation's vision error), with the caller's
+/// `effects` on top (an experiment's execution noise, a stroke's vision error): torque noises add
+/// as independent noises (root of squares, drawn from derive_seed(options.seed, 1)), launch biases,
+/// latencies and ball offsets add, speed scales multiply. The wrappers of both are built here
+/// (control::PlantWrappers), per putt. The ball lies at
 /// options.stance's position, the base beside it (stance_for); the identity stance means the
 /// field's tee with aim 0. `angle` and the result's club and launch angles are in the stance's
 /// frame (aim + angle in the world). Deterministic. Throws InputError for a bad hole or a ball
 /// off the lane.
 control::FullPuttResult arm_putt(const System& system, SystemData& data, std::array<double, 2> hole,
-                                 double angle, double speed, control::FullPuttOptions options = {});
+                                 double angle, double speed, control::FullPuttOptions options = {},
+                                 control::PlantEffectValues effects = {});
 
 /// The arm hits the ball lying at situation.ball towards `angle` [rad, world] at club speed
 /// `speed` [m/s], the base placed by hit_pose; the hole seen at situation.hole. The result's club
@@ -198,7 +203,8 @@ control::FullPuttResult arm_putt(const System& system, SystemData& data, std::ar
 /// same bits as arm_putt.
 control::FullPuttResult arm_hit(const System& system, SystemData& data,
                                 const field::Situation& situation, double angle, double speed,
-                                control::FullPuttOptions options = {});
+                                control::FullPuttOptions options = {},
+                                const control::PlantEffectValues& effects = {});
 
 /// The ball alone, launched from `start` (default: the tee) at `angle` [rad, world], `speed`
 /// [m/s] (no spin), the hole seen at `hole` (really at real_hole(system, hole)).

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "field/field.hpp"
@@ -55,6 +56,60 @@ TEST(NetworkPerception, ReportsTheFeedAndItsFreshness) {
   EXPECT_FALSE(p.fresh) << "0.5 s of silence is stale (max_age 0.2 s)";
   EXPECT_EQ(p.ball, m.ball) << "the last position is still reported";
   EXPECT_DOUBLE_EQ(p.age, 0.5);
+}
+
+/// A source whose ball is at x = the time it was asked.
+class Clock final : public Perception {
+ public:
+  Perceived perceive(double now) noexcept override {
+    Perceived p;
+    p.fresh = true;
+    p.ball = {now, 0.0, 0.02};
+    p.hole = {2.0, 0.0, 0.0};
+    p.age = 0.0;
+    return p;
+  }
+};
+
+TEST(DelayedPerception, AnswersWhatItsSourceSawLatencyAgo) {
+  Clock clock;
+  DelayedPerception late(clock, 0.03);
+  EXPECT_FALSE(late.identity());
+  // Until an answer is old enough, the oldest kept.
+  EXPECT_EQ(late.perceive(0.00).ball[0], 0.00);
+  EXPECT_EQ(late.perceive(0.01).ball[0], 0.00);
+  EXPECT_EQ(late.perceive(0.02).ball[0], 0.00);
+  const Perceived p = late.perceive(0.03);
+  EXPECT_EQ(p.ball[0], 0.00);
+  EXPECT_DOUBLE_EQ(p.age, 0.03);
+  EXPECT_EQ(late.perceive(0.04).ball[0], 0.01);
+  EXPECT_EQ(late.perceive(0.05).hole, (std::array<double, 3>{2.0, 0.0, 0.0}));
+  // Wrapped again, it starts afresh: no answer from before.
+  late.wrap(clock);
+  EXPECT_EQ(late.perceive(1.0).ball[0], 1.0);
+  EXPECT_TRUE(DelayedPerception(0.0).identity());
+}
+
+TEST(OffsetPerception, MovesTheBallOnly) {
+  Clock clock;
+  OffsetPerception off(clock, {0.002, -0.001});
+  EXPECT_FALSE(off.identity());
+  const Perceived p = off.perceive(0.5);
+  EXPECT_EQ(p.ball[0], 0.5 + 0.002);
+  EXPECT_EQ(p.ball[1], -0.001);
+  EXPECT_EQ(p.ball[2], 0.02);
+  EXPECT_EQ(p.hole, (std::array<double, 3>{2.0, 0.0, 0.0}));
+  EXPECT_EQ(p.age, 0.0);
+  EXPECT_TRUE(OffsetPerception({0.0, 0.0}).identity());
+  // A chain, as a plant's vision is (built first, bound after): late, then off.
+  DelayedPerception late(0.5);
+  OffsetPerception seen({0.01, 0.0});
+  late.wrap(clock);
+  seen.wrap(late);
+  for (int k = 0; k <= 8; ++k) (void)seen.perceive(0.25 * k);
+  const Perceived q = seen.perceive(2.25);
+  EXPECT_EQ(q.ball[0], 1.75 + 0.01);
+  EXPECT_EQ(q.age, 0.5);
 }
 
 }  // namespace

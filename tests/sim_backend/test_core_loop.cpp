@@ -16,7 +16,7 @@
 #include "sim_backend/mujoco_arm.hpp"
 
 namespace mg::testing {
-long allocations();  // test_minigolf_module.cpp counts operator new
+long allocations();  // count_allocations.cpp counts operator new
 }  // namespace mg::testing
 
 namespace mg::control {
