@@ -18,6 +18,7 @@
 #include "selfteach/planner.hpp"
 #include "selfteach/self_teach.hpp"
 #include "stats/gpr.hpp"
+#include "system/observe.hpp"
 
 namespace mg::experiments {
 
@@ -40,7 +41,9 @@ control::FullPuttResult play_putt(const system::System& sys, system::SystemData&
   po.record_interval = 0.005;
   po.torque_noise = options.torque_noise;
   po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
-  return system::arm_hit(sys, data, s, a, v, po);
+  control::FullPuttResult r = system::arm_hit(sys, data, s, a, v, po);
+  system::perceive_putt(sys, data, r);  // the labels and the belief read what the robot saw
+  return r;
 }
 
 /// The evaluation's totals, and the belief the learned model is to be played in.

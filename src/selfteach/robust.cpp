@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "selfteach/hindsight.hpp"
+#include "system/observe.hpp"
 #include "teacher/teacher.hpp"
 
 namespace mg::selfteach {
@@ -48,9 +49,13 @@ LaunchNoise measure_launch_noise(const system::System& system, const field::Situ
     control::FullPuttOptions o;
     o.torque_noise = torque_noise;
     o.seed = derive_seed(seed, static_cast<std::uint64_t>(k));
+    // Cameras of its own read the launch from the path they saw.
+    if (system::paths_seen_by_perception(system)) o.record_interval = 0.01;
     // The hole off the lane's line of play: the launch is what is measured.
-    const auto r = system::arm_putt(system, data, hole, guess.angle, speed, o);
+    auto r = system::arm_putt(system, data, hole, guess.angle, speed, o);
     if (!r.hit) continue;
+    system::perceive_putt(system, data, r);
+    if (!std::isfinite(r.launch.speed)) continue;  // the cameras did not see it
     angles.push_back(r.launch.angle);
     speeds.push_back(r.launch.speed);
   }
