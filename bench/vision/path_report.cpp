@@ -44,7 +44,12 @@ mg::sim::BallSample truth_at(const std::vector<mg::sim::BallSample>& path, doubl
   const auto& a = *(b - 1);
   const double u = (t - a.t) / (b->t - a.t);
   const auto mix = [u](double p, double q) { return p + u * (q - p); };
-  return {t, mix(a.x, b->x), mix(a.y, b->y), mix(a.z, b->z), mix(a.vx, b->vx), mix(a.vy, b->vy),
+  return {t,
+          mix(a.x, b->x),
+          mix(a.y, b->y),
+          mix(a.z, b->z),
+          mix(a.vx, b->vx),
+          mix(a.vy, b->vy),
           mix(a.vz, b->vz)};
 }
 
@@ -63,7 +68,7 @@ nlohmann::json stats_mm(std::vector<double> v, double scale = 1e3) {
 
 int main(int argc, char** argv) {
   using namespace mg;
-  std::string field = "flat", rig_name = "stereo", calibration;
+  std::string field = "flat", rig_name = "stereo", calibration, dump;
   std::vector<double> speeds{0.8, 1.2}, angles{-0.05, 0.05};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
@@ -77,6 +82,8 @@ int main(int argc, char** argv) {
       speeds = numbers(v);
     else if (a == "--angles")
       angles = numbers(v);
+    else if (a == "--dump")
+      dump = v;
     else {
       std::fprintf(stderr, "path_report: unknown option %s\n", a.c_str());
       return 2;
@@ -108,6 +115,20 @@ int main(int argc, char** argv) {
       cpu_putt.push_back(c1 - c0);
       cpu_path.push_back(c2 - c1);
       const auto& seen = r.outcome.trajectory;
+      if (!dump.empty()) {  // both paths as CSV (t, x, y, z, vx, vy, vz), one pair per putt
+        const auto write = [&](const char* what, const std::vector<sim::BallSample>& path) {
+          const std::string name =
+              dump + "/" + field + "-" + std::to_string(putts.size()) + "-" + what + ".csv";
+          if (FILE* f = std::fopen(name.c_str(), "w")) {
+            for (const auto& s : path)
+              std::fprintf(f, "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f\n", s.t, s.x, s.y, s.z, s.vx,
+                           s.vy, s.vz);
+            std::fclose(f);
+          }
+        };
+        write("seen", seen);
+        write("truth", truth);
+      }
       samples += static_cast<long>(seen.size());
       sunk += r.outcome.sunk ? 1 : 0;
       double worst = 0;

@@ -16,9 +16,7 @@ bool paths_seen_by_perception(const System& system) {
 SeenLaunch launch_from_path(const std::vector<sim::BallSample>& path, double at, double window) {
   SeenLaunch out;
   Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-  Eigen::Matrix2d line = Eigen::Matrix2d::Zero();
   Eigen::Matrix<double, 3, 2> rhs = Eigen::Matrix<double, 3, 2>::Zero();
-  Eigen::Matrix2d line_rhs = Eigen::Matrix2d::Zero();
   int n = 0;
   double first = std::numeric_limits<double>::infinity();
   for (const sim::BallSample& s : path) {
@@ -29,29 +27,17 @@ SeenLaunch launch_from_path(const std::vector<sim::BallSample>& path, double at,
     normal += row * row.transpose();
     rhs.col(0) += row * s.x;
     rhs.col(1) += row * s.y;
-    const Eigen::Vector2d lrow(1.0, u);
-    line += lrow * lrow.transpose();
-    line_rhs.col(0) += lrow * s.x;
-    line_rhs.col(1) += lrow * s.y;
     first = std::min(first, s.t);
     ++n;
   }
   if (n < 3 || first > 0.6 * window) return out;
   const Eigen::LDLT<Eigen::Matrix3d> solve(normal);
-  const Eigen::LDLT<Eigen::Matrix2d> solve_line(line);
-  if (solve.info() != Eigen::Success || solve_line.info() != Eigen::Success) return out;
+  if (solve.info() != Eigen::Success) return out;
   const Eigen::Matrix<double, 3, 2> c = solve.solve(rhs);
-  const Eigen::Matrix2d l = solve_line.solve(line_rhs);
-  if (!c.allFinite() || !l.allFinite()) return out;
-  // The direction from the mean velocity (a straight line: the curvature of a quadratic,
-  // extrapolated to the launch, turns the direction with the noise); the speed along it from the
-  // quadratics (the ball slows along its line).
-  const Eigen::Vector2d dir = l.row(1).transpose().normalized();
-  if (!dir.allFinite()) return out;
-  const double speed = dir.dot(c.row(1).transpose());
+  if (!c.allFinite()) return out;
   out.seen = true;
   out.position = {c(0, 0), c(0, 1)};
-  out.velocity = {speed * dir.x(), speed * dir.y()};
+  out.velocity = {c(1, 0), c(1, 1)};
   return out;
 }
 

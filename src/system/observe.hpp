@@ -33,11 +33,13 @@ class PathObserver {
 bool paths_seen_by_perception(const System& system);
 
 /// [s] The launch is read from the path's first samples up to this long after the contact.
-inline constexpr double kLaunchWindow = 0.2;
+inline constexpr double kLaunchWindow = 0.3;
 
 /// The ball's horizontal position [m] and velocity [m/s] at `at` [s] read from `path` (samples
-/// in time order): least-squares quadratics in time over its samples in [0, window]; not seen
-/// (`seen` false) with fewer than 3 samples there or none in its first 60 %.
+/// in time order): least-squares quadratics in time over its samples in [0, window], i.e. the
+/// plain sliding launch that continues into the roll seen (the ball hops off the club and lands
+/// within 0.1 s, where a camera does not tell it from the club: the hop is folded into the
+/// launch). Not seen (`seen` false) with fewer than 3 samples there or none in its first 60 %.
 struct SeenLaunch {
   bool seen = false;
   std::array<double, 2> position{0.0, 0.0};

@@ -28,7 +28,7 @@ TEST(Observe, TheLaunchIsReadFromThePathsFirstSamples) {
   EXPECT_NEAR(l.position[1], -0.2 + s * d, 1e-9);
   // Too few samples in the window, or none in its first half: not seen (never made up).
   EXPECT_FALSE(launch_from_path({path[0], path[1]}, 0.02).seen);
-  EXPECT_FALSE(launch_from_path({path.begin() + 8, path.end()}, 0.02).seen);
+  EXPECT_FALSE(launch_from_path({path.begin() + 11, path.end()}, 0.02).seen);
   EXPECT_FALSE(launch_from_path({}, 0.02).seen);
 }
 

@@ -90,16 +90,16 @@ TEST(PathDisplay, TheCamerasSeeTheWholeRollWithinMillimetres) {
       const double gap = (seen[i].t - seen[i - 1].t) * 60.0;
       EXPECT_NEAR(gap, std::round(gap), 1e-6);  // whole frames apart
     }
-    worst = std::max(worst, (Eigen::Vector3d(seen[i].x, seen[i].y, seen[i].z) -
-                             truth_at(truth, seen[i].t))
-                                .head<2>()
-                                .norm());
+    worst = std::max(worst,
+                     (Eigen::Vector3d(seen[i].x, seen[i].y, seen[i].z) - truth_at(truth, seen[i].t))
+                         .head<2>()
+                         .norm());
   }
   EXPECT_LT(worst, 0.004);
   // The launch read from the path: its direction within a few mrad of the simulator's; its speed
-  // the plain sliding launch that continues into the path seen (the ball hops off the club for
-  // its first centimetres, where the cameras do not use it, and slides faster after: +8 % here).
-  EXPECT_NEAR(r.launch.angle, launch.angle, 0.005);
+  // that of the plain sliding launch that continues into the roll seen (the ball hops off the
+  // club and lands where the cameras do not use it: up to 10 % from the speed in the air).
+  EXPECT_NEAR(r.launch.angle, launch.angle, 0.006);
   EXPECT_NEAR(r.launch.speed / launch.speed, 1.0, 0.12);
 }
 
