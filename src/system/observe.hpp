@@ -23,6 +23,7 @@ class PathObserver {
   /// on `system`): samples from the first contact on, `t` counted from it as in the recorded
   /// trajectory, only where the ball was seen (a lost frame gives no sample). The roll after the
   /// hand-off is rendered from `result.outcome.trajectory`, so the putt must have recorded one.
+  /// A putt it did not watch (played with another perception source) gives an empty path.
   virtual std::vector<sim::BallSample> observe_path(const System& system,
                                                     const control::FullPuttResult& result) = 0;
 };

@@ -1,5 +1,6 @@
 #include "vision/camera_perception.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -116,6 +117,11 @@ std::vector<sim::BallSample> CameraPerceptionSource::observe_path(
   const double t_contact =
       result.launch_state.time - static_cast<double>(std::lround(delay / dt)) * dt;
   std::vector<PathFrame> frames = eyes.frames();
+  // A putt played with another perception (FullPuttOptions::perception_source) left this one's
+  // frames from an earlier putt: it did not watch this one.
+  if (std::none_of(frames.begin(), frames.end(),
+                   [&](const PathFrame& f) { return std::abs(f.stamp - t_contact) <= 0.1; }))
+    return {};
   if (result.handed_off && !result.outcome.trajectory.empty()) {
     const sim::World& ball_world = system.ball_world();
     gl_->window.make_current();
