@@ -10,7 +10,9 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <exception>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -31,7 +33,17 @@ double process_cpu() {
 std::vector<double> numbers(const std::string& text) {
   std::vector<double> out;
   std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(std::stod(item));
+  for (std::string item; std::getline(in, item, ',');) {
+    std::size_t used = 0;
+    double v = 0.0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(v))
+      throw std::invalid_argument("expected numbers separated by commas, got '" + text + "'");
+    out.push_back(v);
+  }
   return out;
 }
 
@@ -66,7 +78,7 @@ nlohmann::json stats_mm(std::vector<double> v, double scale = 1e3) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   using namespace mg;
   std::string field = "flat", rig_name = "stereo", calibration, dump;
   std::vector<double> speeds{0.8, 1.2}, angles{-0.05, 0.05};
@@ -178,4 +190,13 @@ int main(int argc, char** argv) {
       {"roll_render_ms_per_frame", rs.frames ? 1e3 * rs.render_seconds / rs.frames : 0.0}};
   std::printf("%s\n", out.dump(2).c_str());
   return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {  // bad numbers, files, rigs: one line, exit 2
+    std::fprintf(stderr, "path_report: error: %s\n", e.what());
+    return 2;
+  }
 }
