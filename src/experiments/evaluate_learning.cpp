@@ -18,6 +18,7 @@
 #include "selfteach/planner.hpp"
 #include "selfteach/self_teach.hpp"
 #include "stats/gpr.hpp"
+#include "system/observe.hpp"
 
 namespace mg::experiments {
 
@@ -41,7 +42,9 @@ control::FullPuttResult play_putt(const system::System& sys, system::SystemData&
   po.seed = derive_seed(options.noise_seed, static_cast<std::uint64_t>(i) + 1000003);
   control::PlantEffectValues noise;
   noise.torque_noise = options.torque_noise;
-  return system::arm_hit(sys, data, s, a, v, po, noise);
+  control::FullPuttResult r = system::arm_hit(sys, data, s, a, v, po, noise);
+  system::perceive_putt(sys, data, r);  // the labels and the belief read what the robot saw
+  return r;
 }
 
 /// The evaluation's totals, and the belief the learned model is to be played in.

@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "field/situations.hpp"
+#include "system/observe.hpp"
 
 namespace mg::experiments {
 namespace {
@@ -135,12 +136,15 @@ void play_identification(const system::System& truth, std::vector<IdentifyHit>& 
                          double vision_noise, std::uint64_t seed,
                          const std::function<void(int)>& done) {
   system::SystemData data(truth);
+  // Cameras of its own see the paths with their own errors: no Gaussian noise on top.
+  const double noise = system::paths_seen_by_perception(truth) ? 0.0 : vision_noise;
   for (std::size_t k = 0; k < hits.size(); ++k) {
     IdentifyHit& h = hits[k];
     control::FullPuttOptions o;
     o.record_interval = 0.01;
-    perceive_hit(h, system::arm_hit(truth, data, h.situation, h.angle, h.speed, o), vision_noise,
-                 derive_seed(seed, k));
+    control::FullPuttResult r = system::arm_hit(truth, data, h.situation, h.angle, h.speed, o);
+    system::perceive_putt(truth, data, r);
+    perceive_hit(h, r, noise, derive_seed(seed, k));
     if (done) done(static_cast<int>(k) + 1);
   }
 }

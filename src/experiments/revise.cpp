@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "system/observe.hpp"
 
 namespace mg::experiments {
 namespace {
@@ -35,9 +36,11 @@ bool BeliefReviser::observe(const field::Situation& situation, double angle, dou
   h.speed = speed;
   h.path.hole = situation.hole;
   // The world's vision error on what the robot sees (the plant generates the measurement; the
-  // fit never reads it).
-  perceive_hit(h, result, start_.plant().perception.noise,
-               derive_seed(seed_, static_cast<std::uint64_t>(hits_.size())), kPathInterval);
+  // fit never reads it). A path its own cameras saw (system::perceive_putt) has theirs already.
+  const double noise =
+      system::paths_seen_by_perception(start_) ? 0.0 : start_.plant().perception.noise;
+  perceive_hit(h, result, noise, derive_seed(seed_, static_cast<std::uint64_t>(hits_.size())),
+               kPathInterval);
   hits_.push_back(std::move(h));
   std::optional<belief::Belief> prior = prior_;
   if (!prior && !start_.belief().empty()) prior = belief::Belief{start_.belief()};

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "system/observe.hpp"
 
 namespace mg::game {
 
@@ -46,9 +47,13 @@ LaunchError launch_precision(const system::System& system, system::SystemData& d
       o.seed = derive_seed(seed, static_cast<std::uint64_t>(got.size() + 1000 * dof));
       control::PlantEffectValues seen;
       seen.perceived_ball_offset = {vision_noise * normal(rng), vision_noise * normal(rng)};
-      const auto r = system::arm_putt(system, data, field.hole.position, 0.0, club, o, seen);
+      // Cameras of its own read the launch from the path they saw.
+      if (system::paths_seen_by_perception(system)) o.record_interval = 0.01;
+      auto r = system::arm_putt(system, data, field.hole.position, 0.0, club, o, seen);
       if (r.hit_refused || !r.hit) continue;
-      got.push_back(arm_launch(field, r.ball_start, r.launch_state));
+      system::perceive_putt(system, data, r);
+      const ArmLaunch a = arm_launch(field, r.ball_start, r.launch_state);
+      if (std::isfinite(a.speed)) got.push_back(a);
     }
     if (got.size() < 2) continue;
     double ma = 0.0, ms = 0.0;

@@ -16,6 +16,7 @@
 #include "game/launch.hpp"
 #include "game/skill.hpp"
 #include "sim/putt.hpp"
+#include "system/observe.hpp"
 
 namespace mg::game {
 namespace {
@@ -173,6 +174,9 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
     LaunchSkill skill;
     const bool oracle = options.player == Player::kOracle || options.player == Player::kExactOracle;
     const bool uses_arm = !oracle;
+    // With cameras of its own the robot learns from what they saw of each roll (its launch
+    // included), which they read from a recorded path.
+    const bool cameras = uses_arm && system::paths_seen_by_perception(*w.truth);
     if (uses_arm) {
       for (int k = 0; k < options.calibration_putts; ++k) {
         const double u = options.calibration_putts > 1
@@ -186,11 +190,13 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
         if (options.vision_noise > 0.0)
           seen.perceived_ball_offset = {options.vision_noise * normal(rng),
                                         options.vision_noise * normal(rng)};
-        if (revising) o.record_interval = kPathInterval;
-        const auto r = system::arm_putt(*w.truth, *w.data, hole, 0.0, club, o, seen);
+        if (revising || cameras) o.record_interval = kPathInterval;
+        auto r = system::arm_putt(*w.truth, *w.data, hole, 0.0, club, o, seen);
         if (r.hit_refused || !r.hit) continue;
+        system::perceive_putt(*w.truth, *w.data, r);
         watch(r.outcome.trajectory);
         const ArmLaunch a = arm_launch(field, r.ball_start, r.launch_state);
+        if (!std::isfinite(a.speed)) continue;           // the cameras did not see the launch
         skill.add(club, 0.0, a.angle, a.speed, a.club);  // the identity stance: world = robot
         ++result.learning_putts;
       }
@@ -312,13 +318,24 @@ RoundResult play_round(const Course& course, const control::ModuleConfig& config
           out.rest_position = ball;
           out.end = sim::PuttEnd::kAtRest;
         } else {
-          out = r.outcome;
+          out = r.outcome;  // the referee's: where the ball went
           const ArmLaunch a = arm_launch(field, r.ball_start, r.launch_state);
           s.launch = {a.angle, a.speed};
+          // What the robot saw of it (the same result without cameras of its own).
+          const control::FullPuttResult* seen = &r;
+          std::optional<control::FullPuttResult> by_cameras;
+          if (cameras) {
+            by_cameras = r;
+            system::perceive_putt(*w.truth, *w.data, *by_cameras);
+            seen = &*by_cameras;
+          }
+          const ArmLaunch sa =
+              cameras ? arm_launch(field, seen->ball_start, seen->launch_state) : a;
           // Every stroke played refines the skill (angles in the robot's frame).
-          skill.add(club, hitting, std::remainder(a.angle - o.stance.yaw, 2.0 * kPi), a.speed,
-                    a.club);
-          if (watch(out.trajectory)) w.belief = believed();
+          if (std::isfinite(sa.speed))
+            skill.add(club, hitting, std::remainder(sa.angle - o.stance.yaw, 2.0 * kPi), sa.speed,
+                      sa.club);
+          if (watch(seen->outcome.trajectory)) w.belief = believed();
         }
       }
       ++hr.strokes;

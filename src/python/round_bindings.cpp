@@ -27,6 +27,7 @@
 #include "python/bindings.hpp"
 #include "sim/fast_putt.hpp"
 #include "sim/putt.hpp"
+#include "system/observe.hpp"
 #include "system/system.hpp"
 
 namespace mg::python {
@@ -237,10 +238,14 @@ void bind_round(py::module_& m) {
             control::PlantEffectValues seen;
             if (vision_noise > 0.0)
               seen.perceived_ball_offset = {vision_noise * normal(rng), vision_noise * normal(rng)};
-            const auto r =
+            // Cameras of its own read the launch from the path they saw.
+            if (system::paths_seen_by_perception(s)) o.record_interval = 0.01;
+            auto r =
                 system::arm_putt(s, data, hole, 0.0, lo + (hi - lo) * (0.02 + 0.96 * u), o, seen);
             if (r.hit_refused || !r.hit) continue;
+            system::perceive_putt(s, data, r);
             const game::ArmLaunch a = game::arm_launch(s.field(), r.ball_start, r.launch_state);
+            if (!std::isfinite(a.speed)) continue;  // the cameras did not see the launch
             skill.add(lo + (hi - lo) * (0.02 + 0.96 * u), 0.0, a.angle, a.speed, a.club);
           }
         }

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/rng.hpp"
+#include "system/observe.hpp"
 #include "teacher/teacher.hpp"
 
 namespace mg::selfteach {
@@ -87,7 +88,10 @@ CrkrResult crkr_learn(const system::System& system, const field::Situations& reg
     if (region.learn_speed) speed += act[2] * options.sigma_speed * speed_draw;
     angle = std::clamp(angle, cfg.angle_min + 1e-6, cfg.angle_max - 1e-6);
     speed = std::clamp(speed, cfg.speed_min, cfg.speed_max);
-    const auto r = system::arm_putt(system, data, hole, angle, speed);
+    control::FullPuttOptions o;  // cameras of its own read the launch from a recorded path
+    if (system::paths_seen_by_perception(system)) o.record_interval = 0.01;
+    auto r = system::arm_putt(system, data, hole, angle, speed, o);
+    system::perceive_putt(system, data, r);
     const PuttRecord p = record_putt({field.tee, hole}, angle, speed, r);
     res.sunk += p.sunk;
     res.putts.push_back(p);

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "selfteach/hindsight.hpp"
+#include "system/observe.hpp"
 #include "teacher/teacher.hpp"
 
 namespace mg::selfteach {
@@ -49,9 +50,13 @@ LaunchNoise measure_launch_noise(const system::System& system, const field::Situ
     o.seed = derive_seed(seed, static_cast<std::uint64_t>(k));
     control::PlantEffectValues noise;
     noise.torque_noise = torque_noise;
+    // Cameras of its own read the launch from the path they saw.
+    if (system::paths_seen_by_perception(system)) o.record_interval = 0.01;
     // The hole off the lane's line of play: the launch is what is measured.
-    const auto r = system::arm_putt(system, data, hole, guess.angle, speed, o, noise);
+    auto r = system::arm_putt(system, data, hole, guess.angle, speed, o, noise);
     if (!r.hit) continue;
+    system::perceive_putt(system, data, r);
+    if (!std::isfinite(r.launch.speed)) continue;  // the cameras did not see it
     angles.push_back(r.launch.angle);
     speeds.push_back(r.launch.speed);
   }

@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "stats/gpr.hpp"
+#include "system/observe.hpp"
 #include "system/parallel.hpp"
 #include "teacher/bank_shots.hpp"
 #include "teacher/teacher.hpp"
@@ -266,6 +267,8 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
           control::FullPuttOptions po;
           po.record_interval = options.record_interval;
           results[k] = system::arm_hit(*sys, data, targets[k], plans[k][0], plans[k][1], po);
+          // Labels, launches and revisions read the putt as the robot saw it.
+          system::perceive_putt(*sys, data, results[k]);
         });
     // The belief first (in putt order: the same bits for any thread count), so that this round's
     // labels are already read in it; a revision rebuilds the planner and the earlier labels.

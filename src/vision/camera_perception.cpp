@@ -1,6 +1,8 @@
 #include "vision/camera_perception.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 
 #include "viz/renderer.hpp"
@@ -14,7 +16,9 @@ CameraPerception::CameraPerception(RigRenderer& renderer, const StereoModel& mod
       d_(d),
       data_(model),
       period_(1.0 / model.calibration.cameras[0].rate_hz),
-      latency_(renderer.truth(0).latency) {}
+      latency_(renderer.truth(0).latency) {
+  frames_.reserve(512);
+}
 
 perception::Perceived CameraPerception::perceive(double now) noexcept {
   try {
@@ -41,6 +45,7 @@ perception::Perceived CameraPerception::perceive(double now) noexcept {
       const long outliers = data_.ball.rejected;
       stereo_frame(*model_, data_, images, now);
       stats_.cpu_seconds += thread_cpu_seconds() - c0;
+      frames_.push_back(path_frame(data_, now));
       ++stats_.frames;
       const int views = data_.last_ball.views;
       (views == 2 ? stats_.ball_stereo : views == 1 ? stats_.ball_mono : stats_.ball_lost)++;
@@ -87,6 +92,7 @@ CameraPerceptionSource::~CameraPerceptionSource() {
   gl_->window.make_current();  // the renderers free their GL resources in it
   perception_.reset();
   renderer_.reset();
+  roll_renderer_.reset();
   viz::GlWindow::release_current();
 }
 
@@ -99,6 +105,52 @@ perception::Perception& CameraPerceptionSource::attach(const sim::World& world, 
   viz::GlWindow::release_current();
   perception_ = std::make_unique<CameraPerception>(*renderer_, model_, d, &gl_->window);
   return *perception_;
+}
+
+std::vector<sim::BallSample> CameraPerceptionSource::observe_path(
+    const system::System& system, const control::FullPuttResult& result) {
+  if (!perception_ || !result.hit) return {};
+  CameraPerception& eyes = *perception_;
+  // The contact on the world's clock: the launch was measured a whole number of steps after it.
+  const double dt = renderer_->world().model()->opt.timestep;
+  const double delay = control::FullPuttOptions{}.launch_delay;
+  const double t_contact =
+      result.launch_state.time - static_cast<double>(std::lround(delay / dt)) * dt;
+  std::vector<PathFrame> frames = eyes.frames();
+  // A putt played with another perception (FullPuttOptions::perception_source) left this one's
+  // frames from an earlier putt: it did not watch this one.
+  if (std::none_of(frames.begin(), frames.end(),
+                   [&](const PathFrame& f) { return std::abs(f.stamp - t_contact) <= 0.1; }))
+    return {};
+  if (result.handed_off && !result.outcome.trajectory.empty()) {
+    const sim::World& ball_world = system.ball_world();
+    gl_->window.make_current();
+    struct Release {
+      ~Release() { viz::GlWindow::release_current(); }
+    } release;
+    if (!roll_renderer_ || &roll_renderer_->world() != &ball_world) {
+      roll_renderer_.reset();
+      roll_renderer_ = std::make_unique<RigRenderer>(ball_world, rig_);
+      roll_data_ = ball_world.make_data();
+    }
+    // The cup where the module's world had it (the real one, not where the robot believes it).
+    const auto hole = renderer_->world().hole_position(eyes.data_pointer());
+    const RollStats s = watch_roll(*roll_renderer_, roll_data_.get(), model_, eyes.data(),
+                                   result.outcome.trajectory, t_contact, hole, eyes.next_capture(),
+                                   eyes.period(), frames);
+    roll_stats_.frames += s.frames;
+    roll_stats_.lost += s.lost;
+    roll_stats_.cpu_seconds += s.cpu_seconds;
+    roll_stats_.render_seconds += s.render_seconds;
+  }
+  // The club follows the ball off the tee; while its head is within a few centimetres, its
+  // pixels pull the ball's blob (measured: up to 15 mm off, mostly in height). The robot saw
+  // where the ball lay before the club came near: measurements that close to it are not used.
+  for (PathFrame& f : frames)
+    if (std::hypot(f.point.x() - result.ball_start[0], f.point.y() - result.ball_start[1]) <
+        kClubClearance)
+      f.accepted = false;
+  return path_samples(frames, t_contact);
 }
 
 Cameras load_cameras(const std::string& rig, const std::string& calibration) {

@@ -11,10 +11,13 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "sim_backend/simulator_perception.hpp"
+#include "system/observe.hpp"
 #include "system/system.hpp"
 #include "vision/calibration.hpp"
+#include "vision/path_observer.hpp"
 #include "vision/rig_renderer.hpp"
 #include "vision/stereo_pipeline.hpp"
 
@@ -46,7 +49,17 @@ class CameraPerception final : public perception::Perception {
   perception::Perceived perceive(double now) noexcept override;
 
   const StereoData& data() const { return data_; }
+  /// The pipeline's state, for watching the roll on after the putt (watch_roll).
+  StereoData& data() { return data_; }
   const CameraStats& stats() const { return stats_; }
+  /// Every stereo frame of the putt (the ball), in capture order.
+  const std::vector<PathFrame>& frames() const { return frames_; }
+  /// [s] When the next frame would be captured (the world's clock).
+  double next_capture() const { return next_capture_; }
+  /// [s] The rig's frame period.
+  double period() const { return period_; }
+  /// The simulation it watches.
+  const mjData* data_pointer() const { return d_; }
   /// The last released estimate (ball_in_cup: the ball vanished at the hole).
   const StereoEstimate& estimate() const { return released_; }
 
@@ -57,6 +70,7 @@ class CameraPerception final : public perception::Perception {
   const mjData* d_;
   StereoData data_;
   CameraStats stats_;
+  std::vector<PathFrame> frames_;
   double period_, latency_;
   double next_capture_ = 0.0;
   bool started_ = false;
@@ -69,9 +83,17 @@ class CameraPerception final : public perception::Perception {
   double released_stamp_ = -1e300;
 };
 
+/// [m] Ball measurements closer than this to where the ball lay are not in a putt's path: the
+/// club, right behind the ball for its first centimetres, pulls the ball's blob.
+inline constexpr double kClubClearance = 0.07;
+
 /// A PerceptionSource of cameras: one hidden OpenGL window (made here: needs a display, or
 /// `xvfb-run -a`), a RigRenderer per world it is attached to, a fresh CameraPerception per putt.
-class CameraPerceptionSource final : public perception::PerceptionSource {
+/// It also watches each putt's roll to its end for the learners (system::PathObserver): the
+/// module's frames until the hand-off, then the ball-only world rendered at the rig's rate on the
+/// same track.
+class CameraPerceptionSource final : public perception::PerceptionSource,
+                                     public system::PathObserver {
  public:
   /// Throws Error (no display) or InputError (rig).
   CameraPerceptionSource(Rig rig, StereoModel model);
@@ -79,6 +101,12 @@ class CameraPerceptionSource final : public perception::PerceptionSource {
   perception::Perception& attach(const sim::World& world, const mjData* d) override;
   /// The last putt's perception (nullptr before the first).
   const CameraPerception* last() const { return perception_.get(); }
+  /// The last putt's path as the cameras saw it (see system::PathObserver); its roll after the
+  /// hand-off rendered in `system`'s ball-only world from the recorded trajectory.
+  std::vector<sim::BallSample> observe_path(const system::System& system,
+                                            const control::FullPuttResult& result) override;
+  /// What watching the rolls after the hand-off cost, over this source's life.
+  const RollStats& roll_stats() const { return roll_stats_; }
 
  private:
   struct Gl;
@@ -87,6 +115,9 @@ class CameraPerceptionSource final : public perception::PerceptionSource {
   StereoModel model_;
   std::unique_ptr<RigRenderer> renderer_;
   std::unique_ptr<CameraPerception> perception_;
+  std::unique_ptr<RigRenderer> roll_renderer_;  ///< of the ball-only world
+  sim::DataPtr roll_data_;
+  RollStats roll_stats_;
 };
 
 /// The cameras of a run (`--perception camera [--rig R] [--calibration C]`, Python's
