@@ -365,6 +365,8 @@ void add_reproduce(CLI::App& app) {
   cmd->add_option("--real-robot-plant", o->real_robot_plant,
                   "The plant standing in for the real WAM (default: data/plants/real-wam.yaml)");
   cmd->add_option("--plant", o->plant, kPlantHelp);
+  cmd->add_option("--belief", o->belief,
+                  std::string(kBeliefHelp) + "; the real-robot rows start from the survey");
   cmd->add_option("--round-seeds", o->round_seeds,
                   "Seeds of the round of minigolf (default 20, 3 with --quick; 0: skip it)")
       ->check(CLI::Range(0, 1000));

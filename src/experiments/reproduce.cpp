@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "belief/belief.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "core/plot.hpp"
@@ -118,6 +119,7 @@ std::string round_of_minigolf(const Run& run) {
     ro.threads = opt.threads;
     ro.config = opt.config;
     ro.plant = opt.plant;
+    ro.belief = opt.belief;
     ro.plots = opt.plots;
     rounds_md =
         "\n## Beyond the thesis: a round of minigolf\n\n"
@@ -162,6 +164,10 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
   check_inputs(opt, run.datasets);
   system::check_threads(opt.threads);
   run.run_plant = opt.plant.empty() ? plant::Plant{} : plant::load_plant(opt.plant);
+  if (!opt.belief.empty()) {
+    run.run_belief = belief::load_belief(opt.belief).estimate;
+    run.run_belief.source = opt.belief;
+  }
   run.real_plant = plant::load_plant(opt.real_robot_plant.empty()
                                          ? (data_dir() / "plants" / "real-wam.yaml").string()
                                          : opt.real_robot_plant);
@@ -187,6 +193,7 @@ void reproduce(const ReproduceOptions& opt, const std::function<void(const std::
                              {"revision", opt.revision},
                              {"threads", system::thread_count(opt.threads)},
                              {"fields", nlohmann::json::array()}};
+  run_json["belief"] = opt.belief.empty() ? nlohmann::json() : nlohmann::json(opt.belief);
   run_json["plant"] = run.run_plant.source.empty() ? nlohmann::json()
                                                    : nlohmann::json{{"path", run.run_plant.source},
                                                                     {"hash", run.run_plant.hash}};

@@ -31,6 +31,10 @@ struct ReproduceOptions {
   std::string real_robot_plant;
   /// A plant for the whole run (`--plant`): every putt happens in it (empty: the robot's model).
   std::string plant;
+  /// A belief file for the whole run (`--belief`): the chapter's fields and the rounds are
+  /// planned, collected and played in it (empty: the robot believes its field files). The
+  /// real-robot rows start from the survey: they measure what the robot learns of the plant.
+  std::string belief;
   /// The round of minigolf (beyond the thesis, docs/round.md): every shipped course by the robot,
   /// the oracle planner and the greedy player over this many seeds (0: skipped; default: 20, 3
   /// with `quick`).

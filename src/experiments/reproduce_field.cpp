@@ -59,7 +59,8 @@ FieldRun prepare_field(const Run& run, const std::string& name, Tables& t) {
   std::error_code ec;
   FieldRun f;
   f.name = name;
-  f.sys = std::make_unique<system::System>(system::load_config(opt.config, name), run.run_plant);
+  f.sys = std::make_unique<system::System>(system::load_config(opt.config, name), run.run_plant,
+                                           run.run_belief);
   const system::System& sys = *f.sys;
   f.region = sys.field().situations;
   if (f.region.balls)

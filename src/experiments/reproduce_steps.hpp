@@ -61,6 +61,7 @@ struct Run {
   int curve_situations = 30;       ///< test situations per learning-curve point
   int arctan_splits = 0;           ///< random training sets of the arctan protocol
   plant::Plant run_plant;          ///< every putt happens in it (empty: the robot's model)
+  plant::Plant run_belief;         ///< what the robot believes of it (empty: its field files)
   plant::Plant real_plant;         ///< stands in for the real WAM
   std::function<void(const std::string&)> say;                       ///< a progress line
   std::function<void(const std::string&, const std::string&)> plot;  ///< plot.py args, PNG

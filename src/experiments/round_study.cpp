@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "belief/belief.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
 #include "experiments/evaluate.hpp"
@@ -39,6 +40,7 @@ RoundStudy round_study(const RoundStudyOptions& o, const std::filesystem::path& 
   const auto config = system::load_config(o.config, "");
   const plant::Plant plant = o.plant.empty() ? plant::Plant{} : plant::load_plant(o.plant);
   game::RoundOptions base;
+  if (!o.belief.empty()) base.belief = belief::load_belief(o.belief).estimate;
   base.calibration_putts = o.budget;
   base.planner.threads = o.threads;
   base.validate();

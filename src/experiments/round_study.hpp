@@ -20,8 +20,9 @@ struct RoundStudyOptions {
   int threads = 0;
   int budget = game::RoundOptions{}.calibration_putts;  ///< learning putts per field
   std::string config;                                   ///< module config YAML (empty: defaults)
-  std::string plant;  ///< plant file (empty: the robot's model is the world)
-  bool plots = true;  ///< one PNG per hole (the robot's rounds)
+  std::string plant;   ///< plant file (empty: the robot's model is the world)
+  std::string belief;  ///< belief file: the robot plans in it (empty: its field files)
+  bool plots = true;   ///< one PNG per hole (the robot's rounds)
 };
 
 struct RoundStudy {

@@ -274,8 +274,12 @@ TEST(Reproduce, SameCsvFilesWithOneAndTwoThreads) {
   o.threads = 1;
   o.out = temp("repro1");
   reproduce(o, [](const std::string&) {});
+  // Two threads, and a belief that is the identity (the field files as they are): the same bits.
   o.threads = 2;
   o.out = temp("repro2");
+  fs::create_directories(o.out);
+  o.belief = (o.out / "identity-belief.yaml").string();
+  write_file_atomic(o.belief, "format_version: 1\n");
   reproduce(o, [](const std::string&) {});
   int files = 0;
   for (const auto& entry : fs::directory_iterator(temp("repro1") / "csv")) {
@@ -290,6 +294,18 @@ TEST(Reproduce, SameCsvFilesWithOneAndTwoThreads) {
   EXPECT_NE(report.find("thesis"), std::string::npos);
   fs::remove_all(temp("repro1"));
   fs::remove_all(temp("repro2"));
+}
+
+TEST(Reproduce, ABadBeliefFileIsRefusedBeforeAnyStep) {
+  ReproduceOptions o;
+  o.out = temp("repro-belief");
+  o.fields = {"flat"};
+  o.plots = false;
+  o.belief = (temp("repro-belief-in") / "missing.yaml").string();
+  int steps = 0;
+  EXPECT_THROW(reproduce(o, [&](const std::string&) { ++steps; }), InputError);
+  EXPECT_EQ(steps, 0);
+  fs::remove_all(o.out);
 }
 
 TEST(Reproduce, FailsClearlyOnAMissingDataSet) {
