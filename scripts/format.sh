@@ -21,6 +21,12 @@ if ((check == 0)); then
   echo "format.sh: formatted ${#files[@]} files"
   exit 0
 fi
+# One clang-format for every file (a process per file took a minute); only on a difference
+# are the files checked one by one, to name them.
+if "$formatter" --dry-run -Werror "${files[@]}" >/dev/null 2>&1; then
+  echo "format.sh: all ${#files[@]} files follow .clang-format"
+  exit 0
+fi
 bad=()
 for f in "${files[@]}"; do
   "$formatter" --dry-run -Werror "$f" >/dev/null 2>&1 || bad+=("$f")
