@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "belief_test_util.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "field/field.hpp"
@@ -19,12 +20,7 @@
 namespace mg::belief {
 namespace {
 
-/// A Gaussian draw (Box-Muller on 53-bit uniforms: the same on every platform).
-double gaussian(Rng& rng) {
-  const double u1 = (static_cast<double>(rng() >> 11) + 0.5) * 0x1.0p-53;
-  const double u2 = static_cast<double>(rng() >> 11) * 0x1.0p-53;
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
-}
+using test::gaussian;
 
 /// Putts across the lane from the tee: angles and launch speeds [m/s].
 struct Shot {
@@ -206,7 +202,9 @@ TEST(RollingSpans, ReadAPuttOverCrestsOnBothSidesOfEach) {
     }
     for (std::size_t k = 0; k < spans.size(); ++k) {
       EXPECT_GE(spans[k][1], spans[k][0] + 8);
-      if (k > 0) EXPECT_GT(spans[k][0], spans[k - 1][1]);  // apart, in order
+      if (k > 0) {
+        EXPECT_GT(spans[k][0], spans[k - 1][1]);  // apart, in order
+      }
     }
     runs += spans.size();
   }

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "belief_test_util.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "field/field.hpp"
@@ -14,11 +15,7 @@
 namespace mg::belief {
 namespace {
 
-double gaussian(Rng& rng) {
-  const double u1 = (static_cast<double>(rng() >> 11) + 0.5) * 0x1.0p-53;
-  const double u2 = static_cast<double>(rng() >> 11) * 0x1.0p-53;
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
-}
+using test::gaussian;
 
 /// The point model's paths on `truth` from four starts, 2.5 s at 100 Hz, with a Gaussian vision
 /// error of `noise` [m] per axis and sample.
