@@ -4,13 +4,13 @@
 #include <cmath>
 
 #include "belief/path_fit.hpp"
+#include "belief/speed_choice.hpp"
 
 namespace mg::belief {
 namespace {
 
-/// Measured launch speed / club speed of the nominal arm (1.54-1.67, docs/control.md). Only the
-/// ratio of two launches enters equivalent_club_speed, so its exact value matters little.
-constexpr double kLaunchRatio = 1.6;
+/// Only the ratio of two launches enters equivalent_club_speed, so its exact value matters little.
+constexpr double kLaunchRatio = kNominalLaunchPerClub;
 
 double climb(const field::Field& field, std::array<double, 2> ball, std::array<double, 2> hole) {
   return field.height(hole[0], hole[1]) - field.height(ball[0], ball[1]);

@@ -12,6 +12,7 @@
 #include "core/rng.hpp"
 #include "experiments/evaluate_detail.hpp"
 #include "experiments/wire.hpp"
+#include "system/believed_speed.hpp"
 #include "system/distributed.hpp"
 #include "system/parallel.hpp"
 
@@ -149,7 +150,9 @@ Evaluation evaluate_model(const system::System& system, const learning::Model& m
         // carries it.
         if (!region.learn_speed || model.fixed_value("speed") != nullptr)
           for (std::size_t i = 0; i < hits.size(); ++i)
-            hits[i].speed = system::believed_fixed_speed(system, situations[i], hits[i].speed);
+            hits[i].speed = system::believed_club_speed(
+                system, situations[i],
+                system::believed_fixed_speed(system, situations[i], hits[i].speed), hits[i].angle);
         return hits;
       },
       region, options, progress);

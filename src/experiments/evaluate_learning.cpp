@@ -18,6 +18,7 @@
 #include "selfteach/planner.hpp"
 #include "selfteach/self_teach.hpp"
 #include "stats/gpr.hpp"
+#include "system/believed_speed.hpp"
 #include "system/observe.hpp"
 
 namespace mg::experiments {
@@ -110,7 +111,7 @@ LearningEvaluation evaluate_residual(const system::System& system, const learnin
     SituationResult& r = e.rows[k];
     r.hole = s.hole;
     r.ball = s.ball;
-    const auto plan = planner->plan(s);
+    const auto plan = planner->plan_to_play(s);
     r.predicted = predict_hits(model, sys->field(), std::vector<field::Situation>{s})[0];
     r.predicted.angle = plan[0];
     r.predicted.speed = plan[1];
@@ -201,7 +202,9 @@ LearningEvaluation evaluate_appending(const system::System& system, const learni
     r.ball = s.ball;
     r.predicted = predict_hits(out.learned, sys->field(), std::vector<field::Situation>{s})[0];
     if (!region.learn_speed || out.learned.fixed_value("speed") != nullptr)
-      r.predicted.speed = system::believed_fixed_speed(*sys, s, r.predicted.speed);
+      r.predicted.speed = system::believed_club_speed(
+          *sys, system::believed_situation(*sys, s),
+          system::believed_fixed_speed(*sys, s, r.predicted.speed), r.predicted.angle);
     const double a = r.predicted.angle, v = r.predicted.speed;
     r.in_envelope = system::hit_reachable(*sys, a, v);
     int added = 0;

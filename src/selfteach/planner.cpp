@@ -8,6 +8,7 @@
 #include "belief/prior.hpp"
 #include "core/error.hpp"
 #include "selfteach/self_teach.hpp"
+#include "system/believed_speed.hpp"
 #include "teacher/bank_shots.hpp"
 
 namespace mg::selfteach {
@@ -257,6 +258,14 @@ std::array<double, 3> Planner::plan(const field::Situation& situation) const {
   a = std::remainder(a, 2.0 * robot::kPi);
   if (region_.learn_speed || prior_model_) v = std::clamp(v, c.speed_min, c.speed_max);
   return {a, v, score};
+}
+
+std::array<double, 3> Planner::plan_to_play(const field::Situation& situation) const {
+  auto p = plan(situation);
+  if (prior_model_ && !region_.learn_speed)
+    p[1] =
+        system::believed_club_speed(sys_, system::believed_situation(sys_, situation), p[1], p[0]);
+  return p;
 }
 
 learning::Model Planner::residual_model(const std::vector<Label>& labels, int putts) const {

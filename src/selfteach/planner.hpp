@@ -76,6 +76,10 @@ class Planner {
   std::array<double, 3> plan(const field::Situation& situation) const;
   /// The same with the ball on the tee.
   std::array<double, 3> plan(std::array<double, 2> hole) const;
+  /// `plan` for a putt the robot is about to play: with a model prior on an angle-only region in
+  /// a belief, the club speed is chosen for the planned angle in the believed ball world
+  /// (system::believed_club_speed; about 0.1 s, so not for every candidate); else `plan` itself.
+  std::array<double, 3> plan_to_play(const field::Situation& situation) const;
 
   /// The residual model over the prior model from what the robot knows for sure after its first
   /// `putts` putts (all for a negative value): the hindsight `labels` and its putts that sank

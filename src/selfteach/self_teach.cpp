@@ -260,6 +260,12 @@ SelfTeachResult self_teach(const system::System& system, const field::Situations
       targets.push_back(candidates[pick]);
       plans.push_back(best_plan);
     }
+    // The speed of each putt to play chosen in the belief (the candidates were scored without).
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+      const double score = plans[k][2];
+      plans[k] = planner->plan_to_play(targets[k]);
+      plans[k][2] = score;
+    }
     std::vector<control::FullPuttResult> results(static_cast<std::size_t>(round));
     system::parallel_for(
         *sys, round, system::thread_count(options.threads), [&](int i, system::SystemData& data) {

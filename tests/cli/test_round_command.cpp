@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "../slow_test.hpp"
 #include "run_command.hpp"
 
 namespace mg::cli::testing {
@@ -56,6 +57,7 @@ TEST(PlayCli, JsonHasEveryHoleAndPuttAndTheCsvEveryStroke) {
 }
 
 TEST(PlayCli, CompareTabulatesEveryPlayerOverSeeds) {
+  MG_SLOW_TEST();
   const auto course = write_course("one.yaml", R"(format_version: 1
 name: one
 holes:

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../slow_test.hpp"
 #include "core/error.hpp"
 #include "core/rng.hpp"
 #include "ds/demonstrations.hpp"
@@ -73,6 +74,7 @@ class FitEveryK : public ::testing::TestWithParam<int> {};
 
 TEST_P(FitEveryK, SucceedsAndIsStableOnSmoothAndNoisyDemonstrations) {
   const int k = GetParam();
+  if (k >= 5) MG_SLOW_TEST();
   for (const Case& c : cases()) {
     HittingFitOptions opt;
     opt.seds.gaussians = k;

@@ -1,6 +1,7 @@
 // Learning curves against own putts, learning while playing, and noise in the evaluation.
 #include <gtest/gtest.h>
 
+#include "../slow_test.hpp"
 #include "core/error.hpp"
 #include "experiments/evaluate.hpp"
 #include "experiments/learning_curves.hpp"
@@ -124,6 +125,7 @@ TEST(Noise, ZeroNoiseChangesNothingAndNoiseIsSeeded) {
 }
 
 TEST(LearningCurves, SameBitsForOneAndTwoThreadsAndEveryLearnerRuns) {
+  MG_SLOW_TEST();
   const auto region = hill().field().situations;
   CurveOptions o;
   o.checkpoints = {2, 4};

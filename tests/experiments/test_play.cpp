@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../slow_test.hpp"
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/io.hpp"
@@ -262,6 +263,7 @@ TEST(Reproduce, ArctanSplitKeepsTheCornersInTraining) {
 // The whole chain on one field: the same CSVs (data, models, predictions, evaluations, curves,
 // sweeps) with 1 and 2 threads.
 TEST(Reproduce, SameCsvFilesWithOneAndTwoThreads) {
+  MG_SLOW_TEST();
   ReproduceOptions o;
   o.quick = true;
   o.fields = {"flat"};

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../slow_test.hpp"
 #include "core/error.hpp"
 #include "experiments/evaluate.hpp"
 
@@ -81,6 +82,7 @@ TEST(SelfTeach, LearnsFromBallsAnywhere) {
 // A block on the line: the prior aims at the shortest bank, its corrections flip with the bounce,
 // and some of its own putts sink (aimed straight, none could).
 TEST(SelfTeach, OnABlockedLaneItPlaysBankShots) {
+  MG_SLOW_TEST();
   const system::System sys(system::load_config("", "bank-shot"));
   const auto& f = sys.field();
   const field::Situation s{f.tee, {2.0, 0.1}};

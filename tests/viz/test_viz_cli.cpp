@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "../cli/run_command.hpp"
+#include "../slow_test.hpp"
 #include "viz/image.hpp"
 #include "viz_test_util.hpp"
 
@@ -191,6 +192,7 @@ bool nonempty_png(const std::filesystem::path& p) {
 }
 
 TEST(PlotCli, DsAndStrengthFiguresOfTheShippedModel) {
+  MG_SLOW_TEST();
   const auto dir = testing::temp_dir("plot_ds");
   auto r = run_minigolf("plot ds -o " + q(dir / "ds.png"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
