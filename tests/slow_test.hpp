@@ -15,6 +15,6 @@ inline bool slow_tests_enabled() {
 
 }  // namespace mg::testing
 
-#define MG_SLOW_TEST()                        \
+#define MG_SLOW_TEST()                      \
   if (!::mg::testing::slow_tests_enabled()) \
   GTEST_SKIP() << "slow: runs as its own ctest entry (label slow; MINIGOLF_SLOW_TESTS=1)"

@@ -13,7 +13,8 @@ namespace mg::belief {
 namespace {
 
 void require(bool ok, const char* key, const char* expected, double got) {
-  if (!ok) throw InputError(fmt::format("speed choice: {}: expected {}, got {}", key, expected, got));
+  if (!ok)
+    throw InputError(fmt::format("speed choice: {}: expected {}, got {}", key, expected, got));
 }
 
 /// Gaussian weights exp(-x^2 / 2) at x = k step / sigma for k in -n..n.
@@ -42,8 +43,7 @@ void SpeedChoiceOptions::validate() const {
   require(std::isfinite(launch_angle_bias) && std::abs(launch_angle_bias) < 0.5,
           "launch_angle_bias", "|bias| < 0.5 rad", launch_angle_bias);
   require(std::isfinite(speed_min) && speed_min >= 0.0, "speed_min", ">= 0 m/s", speed_min);
-  require(std::isfinite(speed_max) && speed_max > speed_min, "speed_max", "> speed_min",
-          speed_max);
+  require(std::isfinite(speed_max) && speed_max > speed_min, "speed_max", "> speed_min", speed_max);
 }
 
 SpeedChoice choose_club_speed(const sim::World& world, std::array<double, 2> ball,

@@ -13,14 +13,19 @@ namespace mg::belief {
 
 /// Measured launch speed / club speed of the nominal arm (1.54-1.67, docs/control.md).
 inline constexpr double kNominalLaunchPerClub = 1.6;
+/// How the robot's own arm model launches the ball, measured on its putts (club speeds 1.5-2.1
+/// m/s, hitting angles -0.1..0.1 rad; tests/system/test_believed_speed.cpp keeps it true): the
+/// launch speed per commanded club speed, and the launch direction minus the hitting angle.
+inline constexpr double kArmLaunchPerCommand = 1.645;
+inline constexpr double kArmLaunchAngleOffset = -0.0063;  ///< [rad]
 
 struct SpeedChoiceOptions {
-  int speed_steps = 10;          ///< club speeds equivalent * (1 + k step), k in -steps..steps
-  double speed_step = 0.02;      ///< [-] relative
-  int angle_cells = 5;           ///< launch angles angle + i angle_step, i in -cells..cells
-  double angle_step = 0.004;     ///< [rad]
-  double angle_sigma = 0.008;    ///< [rad] the error of the model's angle the choice allows for
-  double speed_sigma = 0.03;     ///< [-] the relative error of the launch speed
+  int speed_steps = 10;        ///< club speeds equivalent * (1 + k step), k in -steps..steps
+  double speed_step = 0.02;    ///< [-] relative
+  int angle_cells = 5;         ///< launch angles angle + i angle_step, i in -cells..cells
+  double angle_step = 0.004;   ///< [rad]
+  double angle_sigma = 0.008;  ///< [rad] the error of the model's angle the choice allows for
+  double speed_sigma = 0.03;   ///< [-] the relative error of the launch speed
   double launch_per_club = kNominalLaunchPerClub;  ///< ball launch speed per club speed
   double launch_angle_bias = 0.0;  ///< [rad] added to the hit's angle for the ball's launch
   double speed_min = 0.0;          ///< [m/s] club speeds outside [min, max] are not chosen
