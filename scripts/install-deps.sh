@@ -16,7 +16,7 @@ packages=(
   clang-14 libfuzzer-14-dev  # scripts/fuzz.sh (libFuzzer harnesses, fuzz/)
   ccache  # build.sh, the wheel and the sanitizer build of CI recompile only what changed
   clang-format  # scripts/format.sh (ctest format_check)
-  libopencv-dev  # src/vision: calibration, detection, triangulation (core imgproc calib3d imgcodecs)
+  libopencv-dev  # src/vision: calibration, detection, triangulation (core imgproc calib3d); videoio: the --video plugin
 )
 
 missing=()

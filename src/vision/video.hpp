@@ -1,7 +1,8 @@
 #pragma once
 /// A camera's recorded footage as a video file (`vision-cam --video`): read frame by frame with
-/// OpenCV's VideoCapture (its FFmpeg backend: MJPG in AVI, H.264 in MP4, ...). The same pipeline
-/// as rendered frames or PNG pairs reads the images.
+/// OpenCV's VideoCapture (its FFmpeg backend: MJPG in AVI, H.264 in MP4, ...) in the video plugin,
+/// loaded on first use (video_plugin.hpp). The same pipeline as rendered frames or PNG pairs reads
+/// the images.
 #include <memory>
 #include <string>
 
@@ -11,7 +12,8 @@ namespace mg::vision {
 
 class VideoReader {
  public:
-  /// Opens `path`. Throws IoError (one line naming it) when it is missing or cannot be decoded.
+  /// Opens `path`. Throws IoError (one line naming it) when it is missing or cannot be decoded, or
+  /// when the video plugin cannot be loaded.
   explicit VideoReader(const std::string& path);
   ~VideoReader();
   VideoReader(const VideoReader&) = delete;

@@ -28,4 +28,11 @@ rm -f "$tmp/prefix/share/minigolf/data/fields/arctan.yaml"  # proves the install
   { echo "FAIL: the installed build reads the source tree's data"; exit 1; }
 (cd / && "$tmp/prefix/bin/minigolf" putt --angle 0 --speed 1 --json) >/dev/null ||
   { echo "FAIL: full-system putt on the installed build"; exit 1; }
-echo "moved build: copied and installed trees find their data: 2 passed, 0 failed"
+# The installed video plugin is the one the installed minigolf loads (not the build tree's).
+plugin="$(ls "$tmp"/prefix/lib*/minigolf/libminigolf_video.so 2>/dev/null | head -1)"
+[[ -n $plugin ]] || { echo "FAIL: the video plugin is not installed"; exit 1; }
+loaded="$(cd / && LD_DEBUG=files "$tmp/prefix/bin/minigolf" vision-cam --fast \
+  --video /no/such/a.avi,/no/such/b.avi 2>&1 || true)"
+grep -q "no such file" <<<"$loaded" && grep -q "file=$plugin" <<<"$loaded" ||
+  { echo "FAIL: the installed minigolf does not load the installed video plugin"; exit 1; }
+echo "moved build: copied and installed trees find their data and plugin: 3 passed, 0 failed"

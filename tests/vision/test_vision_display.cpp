@@ -413,6 +413,25 @@ TEST(VisionCliDisplay, VisionCamReadsOneVideoPerCamera) {
     EXPECT_EQ(r.exit_code, 2) << args << r.err;
     EXPECT_EQ(cli::testing::count_lines(r.err), 1) << args << r.err;
   }
+  // The video plugin (OpenCV's videoio, loaded at run time) not found: one line naming it.
+  const auto r = cli::testing::run_command_line(
+      "MINIGOLF_VIDEO_PLUGIN=/nonexistent " + std::string(MINIGOLF_BINARY) + " vision-cam --rig " +
+      rig + to + " --video " + videos);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(cli::testing::count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("video plugin /nonexistent"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("MINIGOLF_VIDEO_PLUGIN"), std::string::npos) << r.err;
+}
+
+// No display needed: vision-cam --video with the video plugin not found fails before a frame.
+TEST(VisionCli, AMissingVideoPluginIsOneLineNamingIt) {
+  const auto r = cli::testing::run_command_line(
+      "MINIGOLF_VIDEO_PLUGIN=/nonexistent " + std::string(MINIGOLF_BINARY) + " vision-cam --rig " +
+      (data_dir() / "rigs" / "stereo.yaml").string() +
+      " --fast --to 127.0.0.1:9 --video a.avi,b.avi");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(cli::testing::count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("video plugin /nonexistent"), std::string::npos) << r.err;
 }
 
 }  // namespace
