@@ -49,6 +49,20 @@ struct SeenLaunch {
 SeenLaunch launch_from_path(const std::vector<sim::BallSample>& path, double at,
                             double window = kLaunchWindow);
 
+/// [s] How much of the roll after the launch `fit_launch_to_roll` follows.
+inline constexpr double kLaunchFitHorizon = 2.0;
+
+/// The plain sliding launch from `seen`'s position whose roll in `believed` (a ball-only world of
+/// the field the robot believes in) best follows `path` over [at, at + horizon]: its speed scale
+/// and direction fitted by damped Gauss-Newton (finite differences of sim::fast_putt) to the
+/// seen positions. The kinematic launch (launch_from_path) folds the hop off the club into a
+/// slide 3-4 % too fast: imagined from it, a roll ended 7-49 cm from where the real one did. What
+/// the planner imagines from the launch skill is then the roll the cameras saw. `seen` itself
+/// when it is not seen or fewer than 5 samples lie in the horizon. Deterministic.
+SeenLaunch fit_launch_to_roll(const sim::World& believed, const std::vector<sim::BallSample>& path,
+                              double at, const SeenLaunch& seen,
+                              double horizon = kLaunchFitHorizon);
+
 /// Makes `result` (of arm_putt or arm_hit on `system` with `data`, the last putt played with
 /// `data`) what the robot perceived of it. Without a PathObserver (the simulator's truth):
 /// unchanged, bit for bit. With one: `outcome.trajectory` is the path it saw; `launch` and
