@@ -161,8 +161,12 @@ void perceive_putt(const System& system, SystemData& data, control::FullPuttResu
   const double delay = control::FullPuttOptions{}.launch_delay;
   // The launch whose roll in the robot's own ball world follows the path seen.
   const sim::World believed(system.field(), system.ball_world().options());
-  const SeenLaunch seen = fit_launch_to_roll(believed, result.outcome.trajectory, delay,
-                                             launch_from_path(result.outcome.trajectory, delay));
+  SeenLaunch kinematic = launch_from_path(result.outcome.trajectory, delay);
+  // A fast ball may land late in the cameras' view: read it from a longer start of the path
+  // (the roll fit then sets its speed and direction).
+  if (!kinematic.seen)
+    kinematic = launch_from_path(result.outcome.trajectory, delay, 2.0 * kLaunchWindow);
+  const SeenLaunch seen = fit_launch_to_roll(believed, result.outcome.trajectory, delay, kinematic);
   sim::BallState& s = result.launch_state;
   if (!seen.seen) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
