@@ -1,9 +1,9 @@
 #pragma once
 /// Calibrating the rig as a person would: a checkerboard held in front of the cameras in many
-/// poses (intrinsics and lens distortion: OpenCV calibrateCamera; the cameras' relative pose:
-/// stereoCalibrate), then laid on the lane at a known place (each camera's pose in the field's
-/// frame: solvePnP). Images come from RigRenderer (the rig's truth); the result is the robot's
-/// belief (vision/calibration.hpp).
+/// poses (intrinsics and lens distortion: OpenCV calibrateCamera, refined with the cameras'
+/// relative pose by stereoCalibrate), then laid on the lane at a known place (each camera's pose
+/// in the field's frame: solvePnP). Images come from RigRenderer (the rig's truth); the result is
+/// the robot's belief (vision/calibration.hpp).
 #include <cstdint>
 #include <string>
 
@@ -27,8 +27,8 @@ struct CalibrateOptions {
 
 struct CalibrateReport {
   Calibration calibration;
-  int poses_tried = 0;               ///< board poses rendered
-  int poses_rejected = 0;            ///< ... where a camera did not find every corner
+  int poses_tried = 0;     ///< board poses rendered
+  int poses_rejected = 0;  ///< ... where a camera did not find every corner or one was 1 px off
   std::vector<double> field_rms_px;  ///< solvePnP's reprojection RMS on the lane board
   double stereo_baseline = 0.0;      ///< [m] |T| of stereoCalibrate
   double pnp_baseline = 0.0;         ///< [m] the same from the two cameras' lane-board poses

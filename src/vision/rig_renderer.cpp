@@ -24,14 +24,16 @@ void add_box(mjvScene& scn, const Eigen::Vector3d& centre, const Eigen::Matrix3d
 void add_board(mjvScene& scn, const Board& b) {
   const float white[4] = {0.95f, 0.95f, 0.95f, 1.0f}, black[4] = {0.02f, 0.02f, 0.02f, 1.0f};
   const double s = b.square;
-  // White plate with a one-square margin around the (cols + 1) x (rows + 1) squares.
-  const Eigen::Vector3d plate_centre(0.5 * (b.cols - 1) * s, 0.5 * (b.rows - 1) * s, 0.0);
+  // The squares' faces on -z (towards the camera) lie in the board's plane, where the corners
+  // are; the plate's face 0.3 mm behind them. White plate with a one-square margin around the
+  // (cols + 1) x (rows + 1) squares.
+  const Eigen::Vector3d plate_centre(0.5 * (b.cols - 1) * s, 0.5 * (b.rows - 1) * s, 0.0013);
   add_box(scn, b.origin + b.R * plate_centre, b.R,
           {0.5 * (b.cols + 3) * s, 0.5 * (b.rows + 3) * s, 0.001}, white);
   for (int a = -1; a < b.cols; ++a)
     for (int c = -1; c < b.rows; ++c) {
       if (((a + c) % 2 + 2) % 2 != 0) continue;  // (-1, -1) black
-      const Eigen::Vector3d centre((a + 0.5) * s, (c + 0.5) * s, 0.0);
+      const Eigen::Vector3d centre((a + 0.5) * s, (c + 0.5) * s, 0.0013);
       add_box(scn, b.origin + b.R * centre, b.R, {0.5 * s, 0.5 * s, 0.0013}, black);
     }
 }

@@ -16,8 +16,9 @@
 namespace mg::vision {
 
 /// A calibration checkerboard: `cols` x `rows` inner corners, `square` [m]; corner (i, j) at
-/// origin + R (i square, j square, 0). The square diagonal before corner (0, 0) is black, the
-/// one after the last corner white (so the corner order is never ambiguous).
+/// origin + R (i square, j square, 0), on the face seen from -z. The square diagonal before
+/// corner (0, 0) is black, the one after the last corner white (so the corner order is never
+/// ambiguous).
 struct Board {
   int cols = 9, rows = 6;
   double square = 0.06;
