@@ -71,11 +71,21 @@ std::array<double, 2> hole_clear_of(const field::Field& f,
 SeenLaunch fit_launch_to_roll(const sim::World& believed, const std::vector<sim::BallSample>& path,
                               double at, const SeenLaunch& seen, double horizon) {
   if (!seen.seen) return seen;
-  std::vector<const sim::BallSample*> used;
-  for (const sim::BallSample& s : path)
-    if (s.t >= at && s.t <= at + horizon) used.push_back(&s);
-  if (used.size() < 5) return seen;
   const field::Field& f = believed.field();
+  // The roll up to its first meeting with a border or an obstacle: a bounce the cameras see
+  // badly (the ball behind a wall, its blob on the wall's edge) would steer the fit.
+  const double clear = f.ball.radius + 0.03;
+  const auto& b = f.bounds;
+  std::vector<const sim::BallSample*> used;
+  for (const sim::BallSample& s : path) {
+    if (s.t < at || s.t > at + horizon) continue;
+    if (s.x < b[0] + clear || s.x > b[1] - clear || s.y < b[2] + clear || s.y > b[3] - clear) break;
+    if (!used.empty() &&
+        field::line_blocked(f, {used.back()->x, used.back()->y}, {s.x, s.y}, clear))
+      break;
+    used.push_back(&s);
+  }
+  if (used.size() < 5) return seen;
   const auto [x0, y0] = seen.position;
   const double heading = std::atan2(seen.velocity[1], seen.velocity[0]);
   const double planar = std::hypot(seen.velocity[0], seen.velocity[1]);
@@ -84,7 +94,7 @@ SeenLaunch fit_launch_to_roll(const sim::World& believed, const std::vector<sim:
   const auto n = static_cast<Eigen::Index>(used.size());
   // Residuals (imagined - seen) at the samples of a launch scaled by k and turned by delta.
   const auto residuals = [&](double k, double delta) {
-    const double angle = heading + delta;
+    const double angle = std::remainder(heading + delta, 2.0 * robot::kPi);  // a request's range
     const auto g = f.surface.gradient(x0, y0);
     const double cz = g[0] * std::cos(angle) + g[1] * std::sin(angle);
     sim::PuttRequest q;

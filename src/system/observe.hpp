@@ -57,8 +57,9 @@ inline constexpr double kLaunchFitHorizon = 2.0;
 /// and direction fitted by damped Gauss-Newton (finite differences of sim::fast_putt) to the
 /// seen positions. The kinematic launch (launch_from_path) folds the hop off the club into a
 /// slide 3-4 % too fast: imagined from it, a roll ended 7-49 cm from where the real one did. What
-/// the planner imagines from the launch skill is then the roll the cameras saw. `seen` itself
-/// when it is not seen or fewer than 5 samples lie in the horizon. Deterministic.
+/// the planner imagines from the launch skill is then the roll the cameras saw. The path is read
+/// up to its first sample within 3 cm (+ the ball's radius) of the lane's bounds or an obstacle.
+/// `seen` itself when it is not seen or fewer than 5 samples remain. Deterministic.
 SeenLaunch fit_launch_to_roll(const sim::World& believed, const std::vector<sim::BallSample>& path,
                               double at, const SeenLaunch& seen,
                               double horizon = kLaunchFitHorizon);
