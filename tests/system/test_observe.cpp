@@ -96,5 +96,22 @@ TEST(Observe, TheLaunchFittedToTheRollRollsWhereTheBallDid) {
   }
 }
 
+// A roll heading along -x: the fit's turns cross +-pi and stay valid requests.
+TEST(Observe, TheLaunchFitWrapsAHeadingNearPi) {
+  const System sys(load_config("", "flat"));
+  SystemData data(sys);
+  sim::PuttRequest q;
+  q.start = std::array<double, 2>{2.0, 0.0};
+  q.angle = 3.1415;
+  q.speed = 1.5;
+  q.record_interval = 0.01;
+  const auto p = sim::fast_putt(sys.ball_world(), data.ball.get(), {2.5, 0.4}, q);
+  const SeenLaunch kinematic = launch_from_path(p.trajectory, 0.02);
+  ASSERT_TRUE(kinematic.seen);
+  const SeenLaunch fitted = fit_launch_to_roll(sys.ball_world(), p.trajectory, 0.02, kinematic);
+  EXPECT_TRUE(fitted.seen);
+  EXPECT_NEAR(std::abs(std::atan2(fitted.velocity[1], fitted.velocity[0])), 3.1415, 0.003);
+}
+
 }  // namespace
 }  // namespace mg::system
