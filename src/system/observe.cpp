@@ -121,12 +121,19 @@ SeenLaunch fit_launch_to_roll(const sim::World& believed, const std::vector<sim:
     }
     return r;
   };
-  // Levenberg-Marquardt on (k, delta) within [0.7, 1.3] x [-0.05, 0.05] rad.
+  // Levenberg-Marquardt on (k, delta) within [0.7, 1.3] x [-0.05, 0.05] rad. A start the
+  // planning path refuses (a seen position in a wall, off the lane) keeps the kinematic launch.
   double k = 1.0, delta = 0.0, lambda = 1e-3;
-  Eigen::VectorXd r = residuals(k, delta);
+  Eigen::VectorXd r;
+  try {
+    r = residuals(k, delta);
+  } catch (const InputError&) {
+    return seen;
+  }
   double cost = r.squaredNorm();
   constexpr double kStep = 1e-3, kTurn = 2e-4;
-  for (int it = 0; it < 10; ++it) {
+  bool converged = false;
+  for (int it = 0; it < 10 && !converged; ++it) {
     Eigen::MatrixXd j(2 * n, 2);
     j.col(0) = (residuals(k + kStep, delta) - r) / kStep;
     j.col(1) = (residuals(k, delta + kTurn) - r) / kTurn;
@@ -144,10 +151,9 @@ SeenLaunch fit_launch_to_roll(const sim::World& believed, const std::vector<sim:
       const double c1 = r1.squaredNorm();
       if (c1 < cost) {
         improved = true;
-        const bool small = std::abs(k1 - k) < 1e-5 && std::abs(d1 - delta) < 1e-6;
+        converged = std::abs(k1 - k) < 1e-5 && std::abs(d1 - delta) < 1e-6;
         k = k1, delta = d1, r = r1, cost = c1;
         lambda = std::max(lambda * 0.3, 1e-6);
-        if (small) it = 10;
       } else {
         lambda *= 10.0;
       }
