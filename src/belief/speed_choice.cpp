@@ -12,6 +12,8 @@
 namespace mg::belief {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 void require(bool ok, const char* key, const char* expected, double got) {
   if (!ok)
     throw InputError(fmt::format("speed choice: {}: expected {}, got {}", key, expected, got));
@@ -68,7 +70,9 @@ SpeedChoice choose_club_speed(const sim::World& world, std::array<double, 2> bal
     allowed[static_cast<std::size_t>(k)] = club >= options.speed_min && club <= options.speed_max;
     for (int i = 0; i < angles; ++i) {
       sim::PuttRequest r;
-      r.angle = angle + options.launch_angle_bias + (i - na) * options.angle_step;
+      // Wrapped: a hit along -x turns past +-pi (a request's range is one turn).
+      r.angle = std::remainder(angle + options.launch_angle_bias + (i - na) * options.angle_step,
+                               2.0 * kPi);
       r.speed = options.launch_per_club * club;
       r.start = ball;
       const sim::PuttOutcome p = sim::fast_putt(world, d.get(), hole, r);

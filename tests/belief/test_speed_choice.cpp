@@ -65,6 +65,17 @@ TEST(SpeedChoice, NothingSinkingKeepsTheAskedSpeedAndTheRangeHolds) {
   EXPECT_LE(v, o.speed_max);
 }
 
+TEST(SpeedChoice, AHitAlongMinusXIsImaginedAcrossPi) {
+  const sim::World world(field::load_field("flat"));
+  // From (2.0, 0) back to a hole at (0.5, 0) (the tee's 1.5 m mirrored): angles round pi on
+  // both sides of the cut.
+  const auto [lo, hi] = sinking_speeds(world);
+  for (const double angle : {3.1410, -3.1410}) {
+    const SpeedChoice c = choose_club_speed(world, {2.0, 0.0}, {0.5, 0.0}, angle, 0.5 * (lo + hi));
+    EXPECT_GT(c.score, 0.5) << angle;
+  }
+}
+
 TEST(SpeedChoice, BadOptionsAreNamed) {
   const sim::World world(field::load_field("flat"));
   SpeedChoiceOptions o;
