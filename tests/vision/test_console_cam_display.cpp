@@ -12,6 +12,7 @@
 #include "../viz/viz_test_util.hpp"
 #include "core/io.hpp"
 #include "perception/udp.hpp"
+#include "small_rig.hpp"
 
 namespace mg::vision {
 namespace {
@@ -19,13 +20,7 @@ namespace {
 TEST(ConsoleCamDisplay, NormalModeSinksAPuttFromWhatVisionCamSaw) {
   MG_NEED_DISPLAY();
   const auto dir = viz::testing::temp_dir("console_cam");
-  // A 320 x 240 copy of the shipped rig keeps the rendering at the rig's 60 Hz on a busy machine.
-  std::string small = read_text_file(data_dir() / "rigs" / "stereo.yaml");
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"width: 640", "width: 320"},
-                                 {"height: 480", "height: 240"}})
-    for (auto at = small.find(from); at != std::string::npos; at = small.find(from))
-      small.replace(at, from.size(), to);
-  std::ofstream(dir / "small.yaml") << small;
+  const std::string rig = testing::write_small_rig(dir);
   int port = 0;
   {
     const perception::UdpReceiver probe("127.0.0.1", 0);  // a free port, released for the console
@@ -38,7 +33,7 @@ TEST(ConsoleCamDisplay, NormalModeSinksAPuttFromWhatVisionCamSaw) {
   std::ofstream(dir / "script.txt")
       << "hole 1.5 0.0\nwait 1\nangle 0.0\nspeed 1.4\nhit\nwait 5\nstatus\nquit\n";
   const std::string bin = MINIGOLF_BINARY;
-  const std::string cam = bin + " vision-cam --rig " + (dir / "small.yaml").string() +
+  const std::string cam = bin + " vision-cam --rig " + rig +
                           " --hole 1.5,0 --duration 6 --to 127.0.0.1:" + std::to_string(port) +
                           " > " + (dir / "cam.txt").string() + " 2>&1";
   const std::string console = bin + " console --mode normal --realtime --config " +

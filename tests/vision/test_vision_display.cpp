@@ -17,6 +17,7 @@
 #include "perception/vision_message.hpp"
 #include "sim_backend/arm_mujoco.hpp"
 #include "sim_backend/full_system.hpp"
+#include "small_rig.hpp"
 #include "system/system.hpp"
 #include "vision/calibrate.hpp"
 #include "vision/camera_perception.hpp"
@@ -242,12 +243,7 @@ cameras:
   EXPECT_EQ(blind.exit_code, 2) << blind.out << blind.err;
   EXPECT_NE(blind.err.find("the module refused the hit request"), std::string::npos) << blind.err;
 
-  std::string small = read_text_file(data_dir() / "rigs" / "stereo.yaml");
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"width: 640", "width: 320"},
-                                 {"height: 480", "height: 240"}})
-    for (auto at = small.find(from); at != std::string::npos; at = small.find(from))
-      small.replace(at, from.size(), to);
-  const std::string rig = write("small.yaml", small);
+  const std::string rig = testing::write_small_rig(dir);
   const auto truth = cli::testing::run_minigolf("putt --angle 0 --speed 1.2 --json");
   const auto seen = cli::testing::run_minigolf(
       "putt --angle 0 --speed 1.2 --json --perception camera --rig " + rig);
@@ -267,14 +263,7 @@ cameras:
 TEST(VisionCliDisplay, EvaluateWithCamerasHasTheSameBitsOnOneAndTwoThreads) {
   MG_NEED_DISPLAY();
   const auto dir = viz::testing::temp_dir("vision_evaluate");
-  std::string small = read_text_file(data_dir() / "rigs" / "stereo.yaml");
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"width: 640", "width: 320"},
-                                 {"height: 480", "height: 240"},
-                                 {"rate_hz: 60", "rate_hz: 30"}})
-    for (auto at = small.find(from); at != std::string::npos; at = small.find(from))
-      small.replace(at, from.size(), to);
-  const std::string rig = (dir / "small.yaml").string();
-  std::ofstream(rig) << small;
+  const std::string rig = testing::write_small_rig(dir, 30);
   const std::string model = (dir / "flat.json").string();
   ASSERT_EQ(
       cli::testing::run_minigolf("train --method gpr " +
@@ -305,13 +294,7 @@ TEST(VisionCliDisplay, EvaluateWithCamerasHasTheSameBitsOnOneAndTwoThreads) {
 TEST(VisionCliDisplay, VisionCamPublishesWhatItSeesAndReplaysItsFrames) {
   MG_NEED_DISPLAY();
   const auto dir = viz::testing::temp_dir("vision_cam");
-  std::string small = read_text_file(data_dir() / "rigs" / "stereo.yaml");
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"width: 640", "width: 320"},
-                                 {"height: 480", "height: 240"}})
-    for (auto at = small.find(from); at != std::string::npos; at = small.find(from))
-      small.replace(at, from.size(), to);
-  std::ofstream(dir / "small.yaml") << small;
-  const std::string rig = (dir / "small.yaml").string();
+  const std::string rig = testing::write_small_rig(dir);
   const auto receive = [](perception::UdpReceiver& rx) {
     std::vector<perception::VisionMessage> got;
     std::array<char, 600> buf{};
@@ -350,13 +333,7 @@ TEST(VisionCliDisplay, VisionCamPublishesWhatItSeesAndReplaysItsFrames) {
 TEST(VisionCliDisplay, VisionCamReadsOneVideoPerCamera) {
   MG_NEED_DISPLAY();
   const auto dir = viz::testing::temp_dir("vision_video");
-  std::string small = read_text_file(data_dir() / "rigs" / "stereo.yaml");
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"width: 640", "width: 320"},
-                                 {"height: 480", "height: 240"}})
-    for (auto at = small.find(from); at != std::string::npos; at = small.find(from))
-      small.replace(at, from.size(), to);
-  std::ofstream(dir / "small.yaml") << small;
-  const std::string rig = (dir / "small.yaml").string();
+  const std::string rig = testing::write_small_rig(dir);
   perception::UdpReceiver rx("127.0.0.1", 0);
   const auto receive = [&rx] {
     std::vector<perception::VisionMessage> got;
