@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "../viz/viz_test_util.hpp"
+#include "small_rig.hpp"
 #include "system/observe.hpp"
 #include "system/system.hpp"
 #include "vision/camera_perception.hpp"
@@ -16,11 +17,7 @@
 namespace mg::vision {
 namespace {
 
-Rig small_rig() {
-  Rig rig = load_rig("stereo");
-  for (auto& c : rig.cameras) c.width = 320, c.height = 240;
-  return rig;
-}
+using testing::small_rig;
 
 /// The recorded path at `t` (linear between its samples: they are 5 ms apart).
 Eigen::Vector3d truth_at(const std::vector<sim::BallSample>& path, double t) {

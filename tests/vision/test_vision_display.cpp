@@ -27,11 +27,7 @@
 namespace mg::vision {
 namespace {
 
-Rig small_rig() {
-  Rig rig = load_rig("stereo");
-  for (auto& c : rig.cameras) c.width = 320, c.height = 240;
-  return rig;
-}
+using testing::small_rig;
 
 struct Scene {
   system::System sys{system::load_config("", "flat")};
